@@ -1,0 +1,332 @@
+//! Bézier curves of any degree: evaluation, tangents, splitting, bounds and arc length.
+
+use crate::error::check_points;
+use crate::{Aabb, Error, Point, Scalar};
+
+/// A Bézier curve with `N` control points (degree `N - 1`), stored inline.
+///
+/// Construction checks the control points once (finite, inside
+/// [`Scalar::SAFE_RANGE`]); after that every method is total: no panics, no NaN out.
+/// `N < 2` is rejected at compile time:
+///
+/// ```compile_fail
+/// use dunas::{Bezier, Vec2};
+/// let c = Bezier::new([Vec2::new(0.0f32, 0.0)]); // a single point is not a curve
+/// ```
+///
+/// ```
+/// use dunas::{Bezier, Vec2};
+/// let c = Bezier::new([
+///     Vec2::new(0.0f32, 0.0),
+///     Vec2::new(1.0, 2.0),
+///     Vec2::new(3.0, 2.0),
+///     Vec2::new(4.0, 0.0),
+/// ])?;
+/// assert_eq!(c.eval(0.5), Vec2::new(2.0, 1.5));
+/// # Ok::<(), dunas::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bezier<P, const N: usize> {
+    points: [P; N],
+}
+
+/// A quadratic Bézier curve (3 control points).
+pub type Quadratic<P> = Bezier<P, 3>;
+/// A cubic Bézier curve (4 control points).
+pub type Cubic<P> = Bezier<P, 4>;
+
+/// Deepest recursion of [`Bezier::arclen`]: at most `2^16` leaf pieces.
+const ARCLEN_MAX_DEPTH: u32 = 16;
+
+impl<P: Point, const N: usize> Bezier<P, N> {
+    /// A curve through these control points.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN, infinite or saturated coordinate;
+    /// [`Error::OutOfRange`] for one beyond [`Scalar::SAFE_RANGE`].
+    pub fn new(points: [P; N]) -> Result<Self, Error> {
+        const { assert!(N >= 2, "a Bézier curve needs at least 2 control points") };
+        check_points(&points)?;
+        Ok(Bezier { points })
+    }
+
+    /// The control points.
+    #[inline]
+    pub fn points(&self) -> &[P; N] {
+        &self.points
+    }
+
+    /// The polynomial degree, `N - 1`.
+    #[inline]
+    pub const fn degree(&self) -> usize {
+        N - 1
+    }
+
+    /// The first control point, where the curve starts.
+    #[inline]
+    pub fn start(&self) -> P {
+        self.points[0]
+    }
+
+    /// The last control point, where the curve ends.
+    #[inline]
+    pub fn end(&self) -> P {
+        self.points[N - 1]
+    }
+
+    /// The point at parameter `t` by de Casteljau's algorithm.
+    ///
+    /// `t` is clamped to `[0, 1]` and NaN counts as 0; the ends are returned exactly.
+    /// Cost: `N(N-1)/2` lerps (one multiply each per coordinate). Error: a few units of
+    /// rounding times the largest coordinate, since every step is a convex combination.
+    pub fn eval(&self, t: P::Scalar) -> P {
+        let t = clamp_unit(t);
+        if t == P::Scalar::ZERO {
+            self.start()
+        } else if t == P::Scalar::ONE {
+            self.end()
+        } else {
+            eval_points(&self.points, t)
+        }
+    }
+
+    /// The derivative `dP/dt` at `t` (clamped to `[0, 1]`, NaN as 0): the direction of
+    /// travel, with length equal to the speed in units per unit of `t`.
+    ///
+    /// Cost: `N(N-1)/2 - 1` lerps. In `Q16` the result saturates (and reports it through
+    /// [`Point::is_finite`]) when the speed exceeds the range.
+    pub fn tangent(&self, t: P::Scalar) -> P {
+        tangent_points(&self.points, clamp_unit(t))
+    }
+
+    /// The hodograph: the curve of `dP/dt`, with `M = N - 1` control points.
+    ///
+    /// Stable Rust cannot write `N - 1` in a return type, so `M` is a separate parameter
+    /// checked at compile time:
+    ///
+    /// ```
+    /// use dunas::{Bezier, Vec2};
+    /// let c = Bezier::new([Vec2::new(0.0f64, 0.0), Vec2::new(1.0, 1.0), Vec2::new(2.0, 0.0)])?;
+    /// let d: Bezier<_, 2> = c.derivative()?;
+    /// assert_eq!(d.eval(0.5), c.tangent(0.5));
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] / [`Error::NonFinite`] when the derivative's control points
+    /// (`(N-1)·(P[i+1] - P[i])`) leave the format's safe range, which happens in `Q16` for
+    /// large, high-degree curves.
+    pub fn derivative<const M: usize>(&self) -> Result<Bezier<P, M>, Error> {
+        const {
+            assert!(
+                M + 1 == N,
+                "the derivative of an N-point curve has N - 1 points"
+            )
+        };
+        let k = degree_scalar::<P::Scalar>(N - 1);
+        let mut d = [P::default(); M];
+        for (i, di) in d.iter_mut().enumerate() {
+            *di = (self.points[i + 1] - self.points[i]) * k;
+        }
+        Bezier::new(d)
+    }
+
+    /// Splits at `t` (clamped to `[0, 1]`, NaN as 0) into the pieces before and after.
+    ///
+    /// Together the two halves trace exactly the original curve. Cost: `N(N-1)/2` lerps.
+    pub fn split(&self, t: P::Scalar) -> (Self, Self) {
+        let t = clamp_unit(t);
+        self.split_with(|a, b| a.lerp(b, t))
+    }
+
+    /// Splits at `t = 1/2` with [`Point::midpoint`]: exact in floats, shifts and adds in `Q16`.
+    pub fn split_half(&self) -> (Self, Self) {
+        self.split_with(|a, b| a.midpoint(b))
+    }
+
+    #[inline]
+    fn split_with(&self, mix: impl Fn(P, P) -> P) -> (Self, Self) {
+        let mut work = self.points;
+        let mut left = self.points;
+        let mut right = self.points;
+        for r in 1..N {
+            for i in 0..N - r {
+                work[i] = mix(work[i], work[i + 1]);
+            }
+            left[r] = work[0];
+            right[N - 1 - r] = work[N - 1 - r];
+        }
+        // Convex combinations of checked points stay inside the safe range.
+        (Bezier { points: left }, Bezier { points: right })
+    }
+
+    /// The box around the control points, which contains the whole curve (convex hull
+    /// property). Cost: `N` compares per coordinate.
+    pub fn bounding_box(&self) -> Aabb<P> {
+        let mut b = Aabb::point(self.points[0]);
+        for &p in &self.points[1..] {
+            b = b.including(p);
+        }
+        b
+    }
+
+    /// Length of the control polygon, an upper bound on the arc length.
+    pub fn polygon_length(&self) -> P::Scalar {
+        let mut len = P::Scalar::ZERO;
+        for w in self.points.windows(2) {
+            len += w[0].distance(w[1]);
+        }
+        len
+    }
+
+    /// Arc length within `accuracy` (absolute, in coordinate units).
+    ///
+    /// Recursive halving until the control polygon and the chord of each piece agree to
+    /// the piece's share of `accuracy`, then Gravesen's estimate
+    /// `(2·chord + (N-2)·polygon) / N` per piece. The curve lies between chord and
+    /// polygon, so the error of each piece is below their gap. A non-positive or NaN
+    /// `accuracy` asks for the best the format gives. Cost: `N²/2` midpoints per piece,
+    /// at most `2^16` pieces; in practice about `sqrt(length / accuracy)` pieces.
+    pub fn arclen(&self, accuracy: P::Scalar) -> P::Scalar {
+        let acc = if accuracy > P::Scalar::ZERO {
+            accuracy
+        } else {
+            P::Scalar::EPSILON
+        };
+        arclen_rec(self, acc, 0)
+    }
+}
+
+/// De Casteljau on a bare control polygon (no clamping): `N(N-1)/2` lerps.
+#[inline]
+pub(crate) fn eval_points<P: Point, const N: usize>(points: &[P; N], t: P::Scalar) -> P {
+    let mut b = *points;
+    for r in 1..N {
+        for i in 0..N - r {
+            b[i] = b[i].lerp(b[i + 1], t);
+        }
+    }
+    b[0]
+}
+
+/// `dP/dt` of a bare control polygon: de Casteljau to the second-last level.
+#[inline]
+pub(crate) fn tangent_points<P: Point, const N: usize>(points: &[P; N], t: P::Scalar) -> P {
+    let mut b = *points;
+    for r in 1..N - 1 {
+        for i in 0..N - r {
+            b[i] = b[i].lerp(b[i + 1], t);
+        }
+    }
+    (b[1] - b[0]) * degree_scalar::<P::Scalar>(N - 1)
+}
+
+fn arclen_rec<P: Point, const N: usize>(c: &Bezier<P, N>, acc: P::Scalar, depth: u32) -> P::Scalar {
+    let chord = c.start().distance(c.end());
+    let poly = c.polygon_length();
+    if poly - chord <= acc || depth >= ARCLEN_MAX_DEPTH {
+        // Gravesen: (2·chord + (n-1)·polygon) / (n+1) with n = N - 1, a convex combination.
+        let two = P::Scalar::ONE + P::Scalar::ONE;
+        return (chord * two + poly * degree_scalar(N - 2)) / degree_scalar(N);
+    }
+    let (l, r) = c.split_half();
+    let half = Scalar::midpoint(acc, P::Scalar::ZERO);
+    arclen_rec(&l, half, depth + 1) + arclen_rec(&r, half, depth + 1)
+}
+
+/// `t` clamped to `[0, 1]`, NaN mapped to 0.
+#[inline]
+pub(crate) fn clamp_unit<S: Scalar>(t: S) -> S {
+    match (t.partial_cmp(&S::ZERO), t.partial_cmp(&S::ONE)) {
+        (Some(core::cmp::Ordering::Greater), Some(core::cmp::Ordering::Less)) => t,
+        (Some(core::cmp::Ordering::Greater), _) => S::ONE,
+        _ => S::ZERO,
+    }
+}
+
+/// A small integer (a degree or a binomial) as a scalar. Saturates past `i16::MAX`,
+/// which no supported degree reaches.
+#[inline]
+pub(crate) fn degree_scalar<S: Scalar>(n: usize) -> S {
+    S::from_i16(n.min(i16::MAX as usize) as i16)
+}
+
+#[cfg(all(test, any(feature = "std", feature = "libm")))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    fn cubic() -> Cubic<Vec2<f64>> {
+        Bezier::new([
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 3.0),
+            Vec2::new(4.0, 3.0),
+            Vec2::new(5.0, 0.0),
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn eval_matches_bernstein_form() {
+        let c = cubic();
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            let s = 1.0 - t;
+            let p = c.points();
+            let b = p[0] * (s * s * s)
+                + p[1] * (3.0 * s * s * t)
+                + p[2] * (3.0 * s * t * t)
+                + p[3] * (t * t * t);
+            assert!((c.eval(t) - b).length() < 1e-12);
+        }
+        assert_eq!(c.eval(f64::NAN), c.start());
+        assert_eq!(c.eval(7.0), c.end());
+    }
+
+    #[test]
+    fn tangent_matches_closed_form_and_derivative() {
+        let c = cubic();
+        let d: Bezier<_, 3> = c.derivative().unwrap();
+        for i in 0..=8 {
+            let t = i as f64 / 8.0;
+            let s = 1.0 - t;
+            let p = c.points();
+            let exact = (p[1] - p[0]) * (3.0 * s * s)
+                + (p[2] - p[1]) * (6.0 * s * t)
+                + (p[3] - p[2]) * (3.0 * t * t);
+            assert!((c.tangent(t) - exact).length() < 1e-12);
+            assert!((d.eval(t) - exact).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn rejects_bad_control_points() {
+        let nan = Bezier::new([Vec2::new(0.0f32, f32::NAN), Vec2::new(1.0, 1.0)]);
+        assert_eq!(nan, Err(Error::NonFinite));
+        let far = Bezier::new([Vec2::new(0.0f32, 1e30), Vec2::new(1.0, 1.0)]);
+        assert_eq!(far, Err(Error::OutOfRange));
+    }
+
+    #[test]
+    fn arclen_of_a_line_and_a_parabola() {
+        let line = Bezier::new([
+            Vec2::new(0.0f64, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(3.0, 3.0),
+        ])
+        .unwrap();
+        assert!((line.arclen(1e-9) - 18f64.sqrt()).abs() < 1e-9);
+        // y = x^2 on [0, 1] as a quadratic Bézier: length = sqrt(5)/2 + asinh(2)/4.
+        let par = Bezier::new([
+            Vec2::new(0.0f64, 0.0),
+            Vec2::new(0.5, 0.0),
+            Vec2::new(1.0, 1.0),
+        ])
+        .unwrap();
+        let exact = 5f64.sqrt() / 2.0 + 2f64.asinh() / 4.0;
+        for acc in [1e-2, 1e-4, 1e-6, 1e-9] {
+            let err = (par.arclen(acc) - exact).abs();
+            assert!(err <= acc, "accuracy {acc}: error {err}");
+        }
+    }
+}

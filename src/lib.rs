@@ -1,0 +1,94 @@
+//! Ropes, cables, sails and cloth for the game loop of a low-spec device.
+//!
+//! `dunas` simulates a few particles and treats them as the **control points of a Bézier
+//! curve or surface**; de Casteljau smoothing then draws as many points as the screen needs.
+//! A rope of 8 particles looks like one of 30, a sail of 8×8 like one of 20×20.
+//!
+//! The core is `#![no_std]` and never allocates: sizes are const generics, and every
+//! sampler and mesh builder writes into a buffer the caller owns and returns how much it
+//! wrote. The same code runs in `f32`, `f64` and Q16.16 fixed point ([`Q16`]), and nothing
+//! in it panics or lets a NaN out: bad input is an [`Error`].
+//!
+//! # Example
+//!
+//! ```
+//! use dunas::{Bezier, Vec2, lod};
+//!
+//! // A rope's particles, here just four points, as a cubic curve.
+//! let rope = Bezier::new([
+//!     Vec2::new(0.0f32, 0.0),
+//!     Vec2::new(30.0, -40.0),
+//!     Vec2::new(70.0, -40.0),
+//!     Vec2::new(100.0, 0.0),
+//! ])?;
+//!
+//! // As few points as keep the drawing within half a pixel...
+//! let segments = lod::segments(&rope, 0.5)?;
+//! // ...written into a buffer owned by the game.
+//! let mut points = [Vec2::default(); 64];
+//! let n = rope.sample(&mut points[..=segments])?;
+//! assert_eq!(points[0], rope.start());
+//! assert_eq!(points[n - 1], rope.end());
+//! # Ok::<(), dunas::Error>(())
+//! ```
+//!
+//! # Modules
+//!
+//! - [`scalar`]: the [`Scalar`] trait over `f32`, `f64` and [`Q16`].
+//! - [`point`]: [`Vec2`], [`Vec3`] and the [`Point`] trait.
+//! - [`curve`]: [`Bezier`] curves of any degree.
+//! - [`sampler`]: de Casteljau, Bernstein table, Horner, forward differencing and dyadic
+//!   subdivision, behind one [`Sampler`](sampler::Sampler) trait.
+//! - [`smooth`]: a row of particles as one Bézier, a B-spline or a Catmull-Rom spline.
+//! - [`patch`]: tensor-product [`Patch`]es with normals, grids and triangle strips.
+//! - [`lod`]: Wang's formula for curves and patches.
+//!
+//! # Feature flags
+//!
+//! | feature | default | what it does |
+//! |---|---|---|
+//! | `std` | yes | float math from `std`, `std::error::Error` for [`Error`] |
+//! | `libm` | no | float math without `std` (exact square roots from `libm`) |
+//! | `fixed` | no | the [`Q16`] Q16.16 format, for chips without an FPU |
+//! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (about 6% and 3.4% worst case) |
+//!
+//! `f32` and `f64` need `std` or `libm`; a build with neither and without `fixed` stops
+//! with a `compile_error!`. A `fixed`-only build has no floats at all.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+// Numeric kernels index several arrays in step, as the formulas they implement do.
+#![allow(clippy::needless_range_loop)]
+
+#[cfg(any(feature = "std", test))]
+extern crate std;
+
+#[cfg(not(any(feature = "std", feature = "libm", feature = "fixed")))]
+compile_error!(
+    "dunas needs a number format: enable `std` (default) or `libm` for f32/f64, \
+     or `fixed` for Q16.16 (e.g. `--no-default-features --features libm`)"
+);
+
+#[cfg(any(feature = "std", feature = "libm"))]
+mod math;
+
+mod aabb;
+pub mod curve;
+mod error;
+pub mod lod;
+pub mod patch;
+pub mod point;
+#[cfg(feature = "fixed")]
+mod q16;
+pub mod sampler;
+pub mod scalar;
+pub mod smooth;
+
+pub use aabb::Aabb;
+pub use curve::{Bezier, Cubic, Quadratic};
+pub use error::Error;
+pub use patch::{Bicubic, Patch};
+pub use point::{Point, Vec2, Vec3};
+#[cfg(feature = "fixed")]
+pub use q16::Q16;
+pub use scalar::Scalar;

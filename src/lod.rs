@@ -1,0 +1,164 @@
+//! Level of detail: how few segments keep a curve or patch within a pixel tolerance.
+//!
+//! Wang's formula bounds the distance between a degree-`d` Bézier curve and the polyline of
+//! its `n` uniform samples: with `M = max |P[i+2] - 2 P[i+1] + P[i]|`,
+//!
+//! ```text
+//! n = ceil( sqrt( d(d-1)/8 · M / tol ) )   ⇒   every point of the curve is within tol
+//! ```
+//!
+//! It costs `N` vector subtractions and norms plus two square roots: cheap enough to run
+//! every frame, so a rope far away is drawn with 4 segments and the same rope close up with 40.
+//!
+//! ```
+//! use dunas::{Bezier, Vec2, lod};
+//! let c = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(100.0, 200.0), Vec2::new(200.0, 0.0)])?;
+//! let n = lod::segments(&c, 0.5)?; // 0.5 px tolerance
+//! assert_eq!(n, 15); // sqrt(2/8 · 400 / 0.5) = 14.1
+//! let mut pts = [Vec2::default(); 64];
+//! let written = c.sample(&mut pts[..n + 1])?;
+//! assert_eq!(written, 16);
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::{Bezier, Error, Patch, Point, Scalar};
+
+/// The most segments [`segments`] returns (`2^16`); a request that needs more is clamped.
+pub const MAX_SEGMENTS: usize = 1 << 16;
+
+/// Half the largest second difference of a control polygon, `max |Δ²P| / 2`, computed with
+/// midpoints so it cannot overflow `Q16`.
+fn half_second_difference<P: Point>(points: impl Iterator<Item = P> + Clone) -> P::Scalar {
+    let mut m = P::Scalar::ZERO;
+    let mut it = points;
+    let (Some(mut a), Some(mut b)) = (it.next(), it.next()) else {
+        return m;
+    };
+    for c in it {
+        // (c - b) - (b - a), halved inside a 64-bit midpoint in Q16.
+        let h = (c - b).midpoint(-(b - a));
+        m = m.max(h.length());
+        (a, b) = (b, c);
+    }
+    m
+}
+
+/// `ceil( sqrt(d(d-1)/4) · sqrt(half_m) / sqrt(tol) )`, which is Wang's count with
+/// `M = 2 · half_m`. Products of square roots keep `Q16` in range.
+fn wang_count<S: Scalar>(degree: usize, half_m: S, tol: S) -> usize {
+    if degree < 2 || half_m <= S::ZERO {
+        return 1;
+    }
+    let k = S::ratio((degree * (degree - 1)) as u32, 4).sqrt();
+    let x = k * half_m.sqrt() / tol.sqrt();
+    if !x.is_finite() {
+        return MAX_SEGMENTS;
+    }
+    x.ceil_count(MAX_SEGMENTS).max(1)
+}
+
+fn check_tolerance<S: Scalar>(tol: S) -> Result<(), Error> {
+    if tol > S::ZERO && tol.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter)
+    }
+}
+
+/// The number of uniform segments (samples minus one) that keeps the polyline of `curve`
+/// within `tolerance` of the curve everywhere, by Wang's formula. Always at least 1, at most
+/// [`MAX_SEGMENTS`].
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when `tolerance` is not a positive finite number.
+pub fn segments<P: Point, const N: usize>(
+    curve: &Bezier<P, N>,
+    tolerance: P::Scalar,
+) -> Result<usize, Error> {
+    check_tolerance(tolerance)?;
+    let m = half_second_difference(curve.points().iter().copied());
+    Ok(wang_count(N - 1, m, tolerance))
+}
+
+/// Segment counts `(nu, nv)` along `u` and `v` that keep the bilinear quads of a sampled
+/// `(nu + 1) × (nv + 1)` grid within `tolerance` of `patch`.
+///
+/// Each direction gets half the tolerance and Wang's formula over every row (for `u`) or
+/// column (for `v`): the bilinear interpolation error is at most the sum of the two linear
+/// interpolation errors. Splitting each quad into two triangles can add the twist term
+/// `h_u·h_v·max|∂²P/∂u∂v| / 4`, which vanishes on a flat sail.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when `tolerance` is not a positive finite number.
+pub fn patch_segments<P: Point, const U: usize, const V: usize>(
+    patch: &Patch<P, U, V>,
+    tolerance: P::Scalar,
+) -> Result<(usize, usize), Error> {
+    check_tolerance(tolerance)?;
+    let half_tol = Scalar::midpoint(tolerance, P::Scalar::ZERO);
+    let rows = patch.points();
+    let mut mu = P::Scalar::ZERO;
+    for row in rows {
+        mu = mu.max(half_second_difference(row.iter().copied()));
+    }
+    let mut mv = P::Scalar::ZERO;
+    for i in 0..U {
+        mv = mv.max(half_second_difference(rows.iter().map(|row| row[i])));
+    }
+    Ok((
+        wang_count(U - 1, mu, half_tol),
+        wang_count(V - 1, mv, half_tol),
+    ))
+}
+
+#[cfg(all(test, any(feature = "std", feature = "libm")))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    #[test]
+    fn straight_curves_need_one_segment() {
+        let line = Bezier::new([
+            Vec2::new(0.0f32, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(2.0, 2.0),
+        ])
+        .unwrap();
+        assert_eq!(segments(&line, 0.1), Ok(1));
+        let two = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(9.0, 1.0)]).unwrap();
+        assert_eq!(segments(&two, 0.1), Ok(1));
+    }
+
+    #[test]
+    fn matches_the_formula_directly() {
+        let c = Bezier::new([
+            Vec2::new(0.0f64, 0.0),
+            Vec2::new(10.0, 30.0),
+            Vec2::new(40.0, -20.0),
+            Vec2::new(50.0, 0.0),
+        ])
+        .unwrap();
+        let p = c.points();
+        let m = (0..2)
+            .map(|i| (p[i + 2] - p[i + 1] * 2.0 + p[i]).length())
+            .fold(0.0, f64::max);
+        for tol in [0.05, 0.25, 1.0, 4.0] {
+            let n = (6.0 / 8.0 * m / tol).sqrt().ceil() as usize;
+            assert_eq!(segments(&c, tol), Ok(n));
+        }
+    }
+
+    #[test]
+    fn bad_tolerance_is_an_error_and_tiny_ones_clamp() {
+        let c = Bezier::new([
+            Vec2::new(0.0f32, 0.0),
+            Vec2::new(5.0, 9.0),
+            Vec2::new(9.0, 0.0),
+        ])
+        .unwrap();
+        for tol in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            assert_eq!(segments(&c, tol), Err(Error::InvalidParameter));
+        }
+        assert_eq!(segments(&c, 1e-30), Ok(MAX_SEGMENTS));
+    }
+}

@@ -1,0 +1,296 @@
+//! 2D and 3D points ([`Vec2`], [`Vec3`]) and the [`Point`] trait the geometry is written on.
+
+use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+use crate::Scalar;
+
+/// A position or displacement in 2 or 3 dimensions over a [`Scalar`].
+///
+/// Curves, patches and samplers are generic over `Point`, so the same code draws a 2D rope
+/// in `Vec2<Q16>` and a 3D sail in `Vec3<f32>`. Samplers work one coordinate lane at a time
+/// through [`coord`](Point::coord) / [`set_coord`](Point::set_coord), which measured faster
+/// than whole-point arithmetic.
+pub trait Point:
+    Copy
+    + Default
+    + PartialEq
+    + core::fmt::Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Neg<Output = Self>
+    + Mul<<Self as Point>::Scalar, Output = Self>
+    + AddAssign
+    + SubAssign
+{
+    /// The number format of the coordinates.
+    type Scalar: Scalar;
+    /// Number of coordinates (2 or 3).
+    const DIM: usize;
+
+    /// Coordinate `axis` (0 = x, 1 = y, 2 = z); 0 for an axis the point does not have.
+    fn coord(self, axis: usize) -> Self::Scalar;
+    /// Sets coordinate `axis`; ignored for an axis the point does not have.
+    fn set_coord(&mut self, axis: usize, value: Self::Scalar);
+    /// A point with every coordinate equal to `value`.
+    fn splat(value: Self::Scalar) -> Self;
+
+    /// Euclidean length, overflow-free inside the format's range (see [`Scalar::norm`]).
+    fn length(self) -> Self::Scalar;
+
+    /// Distance to `other`.
+    #[inline]
+    fn distance(self, other: Self) -> Self::Scalar {
+        (other - self).length()
+    }
+
+    /// `self + (other - self) * t`: one multiply per coordinate.
+    #[inline]
+    fn lerp(self, other: Self, t: Self::Scalar) -> Self {
+        self + (other - self) * t
+    }
+
+    /// The midpoint, by [`Scalar::midpoint`] (a shift in `Q16`).
+    #[inline]
+    fn midpoint(self, other: Self) -> Self {
+        let mut p = self;
+        for d in 0..Self::DIM {
+            p.set_coord(d, Scalar::midpoint(self.coord(d), other.coord(d)));
+        }
+        p
+    }
+
+    /// Coordinate-wise minimum.
+    #[inline]
+    fn min_coords(self, other: Self) -> Self {
+        let mut p = self;
+        for d in 0..Self::DIM {
+            p.set_coord(d, self.coord(d).min(other.coord(d)));
+        }
+        p
+    }
+
+    /// Coordinate-wise maximum.
+    #[inline]
+    fn max_coords(self, other: Self) -> Self {
+        let mut p = self;
+        for d in 0..Self::DIM {
+            p.set_coord(d, self.coord(d).max(other.coord(d)));
+        }
+        p
+    }
+
+    /// `true` when every coordinate is finite and within [`Scalar::SAFE_RANGE`].
+    #[inline]
+    fn in_safe_range(self) -> bool {
+        (0..Self::DIM).all(|d| self.coord(d).in_safe_range())
+    }
+
+    /// `true` when every coordinate is finite (not NaN, not infinite, not saturated).
+    #[inline]
+    fn is_finite(self) -> bool {
+        (0..Self::DIM).all(|d| self.coord(d).is_finite())
+    }
+}
+
+/// A 2D point or vector: screen-space ropes, side-on sails.
+#[derive(Clone, Copy, Default, PartialEq, Debug)]
+pub struct Vec2<S = f32> {
+    /// Horizontal coordinate.
+    pub x: S,
+    /// Vertical coordinate.
+    pub y: S,
+}
+
+/// A 3D point or vector: sails, flags, cloth.
+#[derive(Clone, Copy, Default, PartialEq, Debug)]
+pub struct Vec3<S = f32> {
+    /// First coordinate.
+    pub x: S,
+    /// Second coordinate.
+    pub y: S,
+    /// Third coordinate.
+    pub z: S,
+}
+
+impl<S> Vec2<S> {
+    /// A point from its coordinates.
+    #[inline]
+    pub const fn new(x: S, y: S) -> Self {
+        Vec2 { x, y }
+    }
+}
+
+impl<S> Vec3<S> {
+    /// A point from its coordinates.
+    #[inline]
+    pub const fn new(x: S, y: S, z: S) -> Self {
+        Vec3 { x, y, z }
+    }
+}
+
+impl<S: Scalar> Vec2<S> {
+    /// A point from `f64` coordinates (setup code; see [`Scalar::from_f64`]).
+    #[inline]
+    pub fn from_f64(x: f64, y: f64) -> Self {
+        Vec2::new(S::from_f64(x), S::from_f64(y))
+    }
+
+    /// Dot product. In `Q16` it overflows once `|a|·|b|` passes 32768.
+    #[inline]
+    pub fn dot(self, o: Self) -> S {
+        self.x * o.x + self.y * o.y
+    }
+
+    /// The z component of the 3D cross product (twice the signed triangle area).
+    #[inline]
+    pub fn cross(self, o: Self) -> S {
+        self.x * o.y - self.y * o.x
+    }
+}
+
+impl<S: Scalar> Vec3<S> {
+    /// A point from `f64` coordinates (setup code; see [`Scalar::from_f64`]).
+    #[inline]
+    pub fn from_f64(x: f64, y: f64, z: f64) -> Self {
+        Vec3::new(S::from_f64(x), S::from_f64(y), S::from_f64(z))
+    }
+
+    /// Dot product. In `Q16` it overflows once `|a|·|b|` passes 32768.
+    #[inline]
+    pub fn dot(self, o: Self) -> S {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product.
+    #[inline]
+    pub fn cross(self, o: Self) -> Self {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// The unit vector in this direction, or `None` for a zero (or non-finite) vector.
+    ///
+    /// Exact to the format's rounding: one norm and one division. In `Q16` the length is
+    /// taken with a 64-bit accumulator, so any vector inside the range normalizes.
+    #[inline]
+    pub fn normalize(self) -> Option<Self> {
+        let len = self.length();
+        if len > S::ZERO && len.is_finite() {
+            let inv = S::ONE / len;
+            Some(self * inv)
+        } else {
+            None
+        }
+    }
+}
+
+macro_rules! impl_ops {
+    ($V:ident { $($f:ident),+ }, $dim:expr, [$($axis:literal => $g:ident),+]) => {
+        impl<S: Scalar> Add for $V<S> {
+            type Output = Self;
+            #[inline]
+            fn add(self, o: Self) -> Self {
+                $V { $($f: self.$f + o.$f),+ }
+            }
+        }
+        impl<S: Scalar> Sub for $V<S> {
+            type Output = Self;
+            #[inline]
+            fn sub(self, o: Self) -> Self {
+                $V { $($f: self.$f - o.$f),+ }
+            }
+        }
+        impl<S: Scalar> Neg for $V<S> {
+            type Output = Self;
+            #[inline]
+            fn neg(self) -> Self {
+                $V { $($f: -self.$f),+ }
+            }
+        }
+        impl<S: Scalar> Mul<S> for $V<S> {
+            type Output = Self;
+            #[inline]
+            fn mul(self, s: S) -> Self {
+                $V { $($f: self.$f * s),+ }
+            }
+        }
+        impl<S: Scalar> AddAssign for $V<S> {
+            #[inline]
+            fn add_assign(&mut self, o: Self) {
+                $(self.$f += o.$f;)+
+            }
+        }
+        impl<S: Scalar> SubAssign for $V<S> {
+            #[inline]
+            fn sub_assign(&mut self, o: Self) {
+                $(self.$f -= o.$f;)+
+            }
+        }
+        impl<S: Scalar> Point for $V<S> {
+            type Scalar = S;
+            const DIM: usize = $dim;
+            #[inline]
+            fn coord(self, axis: usize) -> S {
+                match axis {
+                    $($axis => self.$g,)+
+                    _ => S::ZERO,
+                }
+            }
+            #[inline]
+            fn set_coord(&mut self, axis: usize, value: S) {
+                match axis {
+                    $($axis => self.$g = value,)+
+                    _ => {}
+                }
+            }
+            #[inline]
+            fn splat(value: S) -> Self {
+                $V { $($f: value),+ }
+            }
+            #[inline]
+            fn length(self) -> S {
+                S::norm(&[$(self.$f),+])
+            }
+        }
+    };
+}
+
+impl_ops!(Vec2 { x, y }, 2, [0 => x, 1 => y]);
+impl_ops!(Vec3 { x, y, z }, 3, [0 => x, 1 => y, 2 => z]);
+
+#[cfg(all(test, any(feature = "std", feature = "libm")))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arithmetic_and_lanes() {
+        let a = Vec2::new(1.0f64, 2.0);
+        let b = Vec2::new(3.0, -1.0);
+        assert_eq!(a + b, Vec2::new(4.0, 1.0));
+        assert_eq!(a.lerp(b, 0.5), Vec2::new(2.0, 0.5));
+        assert_eq!(a.midpoint(b), Vec2::new(2.0, 0.5));
+        assert_eq!(a.coord(1), 2.0);
+        assert_eq!(a.coord(2), 0.0);
+        assert_eq!(Vec2::new(3.0f32, 4.0).length(), 5.0);
+        assert_eq!(a.min_coords(b), Vec2::new(1.0, -1.0));
+    }
+
+    #[test]
+    fn normalize_and_cross() {
+        let x = Vec3::new(2.0f64, 0.0, 0.0);
+        let y = Vec3::new(0.0, 3.0, 0.0);
+        assert_eq!(x.cross(y).normalize(), Some(Vec3::new(0.0, 0.0, 1.0)));
+        assert_eq!(Vec3::<f32>::default().normalize(), None);
+        assert_eq!(Vec3::new(f32::NAN, 0.0, 0.0).normalize(), None);
+    }
+
+    #[test]
+    fn safe_range() {
+        assert!(Vec2::new(1e4f32, -1e4).in_safe_range());
+        assert!(!Vec2::new(f32::INFINITY, 0.0).in_safe_range());
+        assert!(!Vec2::new(1e30f32, 0.0).in_safe_range());
+    }
+}

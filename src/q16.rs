@@ -1,0 +1,319 @@
+//! Q16.16 fixed point for chips without an FPU (feature `fixed`).
+//!
+//! [`Q16`] wraps [`fixed::types::I16F16`] (range ±32768, resolution 2⁻¹⁶ ≈ 1.5e-5) and
+//! gives it the arithmetic a game loop can rely on:
+//!
+//! - products are computed in 64 bits and rounded to nearest before the shift back;
+//! - `+ - * /` saturate at the range instead of wrapping; a saturated value reports
+//!   `is_finite() == false`, so the same guard that catches NaN in floats catches overflow
+//!   here; division by zero saturates (0 / 0 gives 0);
+//! - halving and [`midpoint`](crate::Scalar::midpoint) are shifts with no multiply.
+//!
+//! # Safe range
+//!
+//! A squared length overflows Q16.16 once a vector is longer than about 181 (181² > 32768).
+//! The crate never squares a coordinate on its own: [`Scalar::norm`] sums squares of the raw
+//! bits in a 64-bit accumulator and takes an integer square root, so lengths are exact up
+//! to the full range. Constructors accept coordinates up to `±16383` ([`Scalar::SAFE_RANGE`])
+//! so that the difference of any two stays representable. Keep a scene inside that range by
+//! working relative to an anchor (the rope's pin, the sail's mast) and in screen-sized units.
+
+use core::fmt;
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
+
+use fixed::types::I16F16;
+
+use crate::Scalar;
+
+/// A Q16.16 fixed-point number with saturating, round-to-nearest arithmetic.
+///
+/// ```
+/// use dunas::{Q16, Scalar};
+/// let a = Q16::from_f64(1.5);
+/// assert_eq!((a * a).to_f64(), 2.25);
+/// assert!(!(Q16::from_f64(30000.0) * a).is_finite()); // saturated, and says so
+/// ```
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Q16(pub I16F16);
+
+impl Q16 {
+    /// The largest value, `32767.99998`; also the saturation marker.
+    pub const MAX: Q16 = Q16(I16F16::MAX);
+    /// The smallest value, `-32768`; also the saturation marker.
+    pub const MIN: Q16 = Q16(I16F16::MIN);
+
+    /// Builds a value from its raw bits (`value * 65536`).
+    #[inline]
+    pub const fn from_bits(bits: i32) -> Q16 {
+        Q16(I16F16::from_bits(bits))
+    }
+
+    /// The raw bits (`value * 65536`).
+    #[inline]
+    pub const fn to_bits(self) -> i32 {
+        self.0.to_bits()
+    }
+
+    #[inline]
+    const fn saturate(wide: i64) -> Q16 {
+        if wide > i32::MAX as i64 {
+            Q16::MAX
+        } else if wide < i32::MIN as i64 {
+            Q16::MIN
+        } else {
+            Q16::from_bits(wide as i32)
+        }
+    }
+}
+
+impl From<I16F16> for Q16 {
+    #[inline]
+    fn from(x: I16F16) -> Q16 {
+        Q16(x)
+    }
+}
+
+impl From<Q16> for I16F16 {
+    #[inline]
+    fn from(x: Q16) -> I16F16 {
+        x.0
+    }
+}
+
+impl fmt::Debug for Q16 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Debug::fmt(&self.0, f)
+    }
+}
+
+impl fmt::Display for Q16 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.0, f)
+    }
+}
+
+impl Add for Q16 {
+    type Output = Q16;
+    #[inline]
+    fn add(self, rhs: Q16) -> Q16 {
+        Q16::from_bits(self.to_bits().saturating_add(rhs.to_bits()))
+    }
+}
+
+impl Sub for Q16 {
+    type Output = Q16;
+    #[inline]
+    fn sub(self, rhs: Q16) -> Q16 {
+        Q16::from_bits(self.to_bits().saturating_sub(rhs.to_bits()))
+    }
+}
+
+impl Neg for Q16 {
+    type Output = Q16;
+    #[inline]
+    fn neg(self) -> Q16 {
+        Q16::from_bits(self.to_bits().saturating_neg())
+    }
+}
+
+impl Mul for Q16 {
+    type Output = Q16;
+    /// 64-bit product, rounded to nearest (ties up), saturated.
+    #[inline]
+    fn mul(self, rhs: Q16) -> Q16 {
+        let wide = self.to_bits() as i64 * rhs.to_bits() as i64;
+        Q16::saturate((wide + (1 << 15)) >> 16)
+    }
+}
+
+impl Div for Q16 {
+    type Output = Q16;
+    /// 64-bit quotient, rounded to nearest, saturated; `x / 0` saturates by the sign of `x`.
+    #[inline]
+    fn div(self, rhs: Q16) -> Q16 {
+        let (a, b) = (self.to_bits() as i64, rhs.to_bits() as i64);
+        if b == 0 {
+            return match a.signum() {
+                1 => Q16::MAX,
+                -1 => Q16::MIN,
+                _ => Q16::from_bits(0),
+            };
+        }
+        let num = a << 16;
+        let q = num / b;
+        let r = num % b;
+        // Round half away from zero.
+        let q = if 2 * r.abs() >= b.abs() {
+            q + if (num < 0) == (b < 0) { 1 } else { -1 }
+        } else {
+            q
+        };
+        Q16::saturate(q)
+    }
+}
+
+impl AddAssign for Q16 {
+    #[inline]
+    fn add_assign(&mut self, rhs: Q16) {
+        *self = *self + rhs;
+    }
+}
+
+impl SubAssign for Q16 {
+    #[inline]
+    fn sub_assign(&mut self, rhs: Q16) {
+        *self = *self - rhs;
+    }
+}
+
+impl Scalar for Q16 {
+    const ZERO: Self = Q16::from_bits(0);
+    const ONE: Self = Q16::from_bits(1 << 16);
+    const SAFE_RANGE: Self = Q16::from_bits(16383 << 16);
+    const EPSILON: Self = Q16::from_bits(1);
+    const FIXED_POINT: bool = true;
+
+    fn from_f64(x: f64) -> Self {
+        if x.is_nan() {
+            return Self::ZERO;
+        }
+        Q16(I16F16::saturating_from_num(x))
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self.to_bits() as f64 / 65536.0
+    }
+
+    #[inline]
+    fn ratio(num: u32, den: u32) -> Self {
+        if den == 0 {
+            return Self::ZERO;
+        }
+        let (n, d) = ((num as u64) << 16, den as u64);
+        let q = (n + d / 2) / d;
+        Q16::saturate(q.min(i64::MAX as u64) as i64)
+    }
+
+    #[inline]
+    fn sqrt(self) -> Self {
+        if self.to_bits() <= 0 {
+            Self::ZERO
+        } else {
+            Q16(self.0.sqrt())
+        }
+    }
+
+    #[inline]
+    fn abs(self) -> Self {
+        Q16::from_bits(self.to_bits().saturating_abs())
+    }
+
+    #[inline]
+    fn is_finite(self) -> bool {
+        self != Q16::MAX && self != Q16::MIN
+    }
+
+    #[inline]
+    fn midpoint(a: Self, b: Self) -> Self {
+        // Sum in 64 bits, then a rounding shift: no overflow, no multiply.
+        let s = a.to_bits() as i64 + b.to_bits() as i64;
+        Q16::from_bits(((s + 1) >> 1) as i32)
+    }
+
+    fn norm(xs: &[Self]) -> Self {
+        // Squares of raw bits are Q32.32 values below 2^62; three of them fit a u64.
+        let mut acc: u64 = 0;
+        for &x in xs {
+            let r = x.to_bits().unsigned_abs() as u64;
+            acc = acc.saturating_add(r * r);
+        }
+        Q16::saturate(acc.isqrt() as i64)
+    }
+
+    #[inline]
+    fn ceil_count(self, max: usize) -> usize {
+        let bits = self.to_bits();
+        if bits <= 0 {
+            return 0;
+        }
+        let n = ((bits as i64 + 0xFFFF) >> 16) as usize;
+        n.min(max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(x: f64) -> Q16 {
+        Q16::from_f64(x)
+    }
+
+    #[test]
+    fn multiply_rounds_to_nearest_and_saturates() {
+        assert_eq!(q(1.5) * q(1.5), q(2.25));
+        // 3 * 2^-16 times 0.5 is 1.5 ulp: rounds to 2 ulp (ties up).
+        assert_eq!((Q16::from_bits(3) * q(0.5)).to_bits(), 2);
+        assert_eq!(q(200.0) * q(200.0), Q16::MAX);
+        assert_eq!(q(-200.0) * q(200.0), Q16::MIN);
+        assert!(!(q(200.0) * q(200.0)).is_finite());
+    }
+
+    #[test]
+    fn add_saturates_instead_of_wrapping() {
+        assert_eq!(q(30000.0) + q(30000.0), Q16::MAX);
+        assert_eq!(q(-30000.0) - q(30000.0), Q16::MIN);
+        assert_eq!(-Q16::MIN, Q16::MAX);
+    }
+
+    #[test]
+    fn divide_rounds_and_handles_zero() {
+        assert_eq!(q(1.0) / q(4.0), q(0.25));
+        assert_eq!((q(1.0) / q(3.0)).to_bits(), 21845); // 65536/3 = 21845.33
+        assert_eq!((q(2.0) / q(3.0)).to_bits(), 43691); // 43690.67
+        assert_eq!((q(-2.0) / q(3.0)).to_bits(), -43691);
+        assert_eq!(q(1.0) / q(0.0), Q16::MAX);
+        assert_eq!(q(-1.0) / q(0.0), Q16::MIN);
+        assert_eq!(q(0.0) / q(0.0), Q16::ZERO);
+        assert_eq!(q(30000.0) / q(0.01), Q16::MAX);
+    }
+
+    #[test]
+    fn ratio_is_exact_at_dyadic_and_rounded_elsewhere() {
+        assert_eq!(Q16::ratio(3, 8), q(0.375));
+        assert_eq!(Q16::ratio(1, 3).to_bits(), 21845);
+        assert_eq!(Q16::ratio(1, 0), Q16::ZERO);
+        assert_eq!(Q16::ratio(u32::MAX, 1), Q16::MAX);
+    }
+
+    #[test]
+    fn norm_is_exact_beyond_181() {
+        // 3-4-5 scaled far past the point where the squares overflow Q16.16.
+        let n = Q16::norm(&[q(3000.0), q(4000.0)]);
+        assert_eq!(n, q(5000.0));
+        let n = Q16::norm(&[q(16383.0), q(16383.0), q(16383.0)]);
+        assert!((n.to_f64() - 16383.0 * 3f64.sqrt()).abs() < 2e-5);
+        assert_eq!(Q16::norm(&[Q16::MIN, Q16::MIN]), Q16::MAX);
+    }
+
+    #[test]
+    fn midpoint_and_sqrt() {
+        assert_eq!(Q16::midpoint(Q16::MAX, Q16::MAX), Q16::MAX);
+        assert_eq!(Q16::midpoint(q(-3.0), q(4.0)), q(0.5));
+        assert_eq!(q(2.25).sqrt(), q(1.5));
+        assert_eq!(q(-1.0).sqrt(), Q16::ZERO);
+    }
+
+    #[test]
+    fn conversions() {
+        assert_eq!(q(f64::NAN), Q16::ZERO);
+        assert_eq!(q(1e9), Q16::MAX);
+        assert_eq!(q(-0.5).to_f64(), -0.5);
+        assert_eq!(q(2.5).ceil_count(10), 3);
+        assert_eq!(q(2.0).ceil_count(10), 2);
+        assert_eq!(q(-2.0).ceil_count(10), 0);
+        assert_eq!(Q16::from_i16(-16383).to_f64(), -16383.0);
+    }
+}

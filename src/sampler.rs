@@ -1,0 +1,388 @@
+//! Samplers: many points of a curve into a caller's buffer, each method a different trade
+//! between speed and accuracy.
+//!
+//! Every sampler implements [`Sampler`]: it writes points at uniformly spaced parameters
+//! `t = i / (n - 1)` into `out` and returns `n`, the count written. All of them write the end
+//! points exactly. Pick one by what the scene needs:
+//!
+//! | sampler | cost per point (per coordinate) | error | notes |
+//! |---|---|---|---|
+//! | [`DeCasteljau`] | `N(N-1)/2` multiply-adds + one division | a few rounding units × largest coordinate | stable at any degree, the reference |
+//! | [`BernsteinTable`] | `N` multiply-adds, weights read from a table | like de Casteljau | table of `M × N` weights built once for a fixed count `M` |
+//! | [`Horner`] | `N - 1` multiply-adds | grows as `2^(N-1)` × rounding × coordinate | power basis: cancels badly at degree 7, saturates in `Q16` |
+//! | [`ForwardDiff`] | `N - 1` additions | grows with the sample count (≈ `n^(N-1)` × rounding) | fastest; fine for short runs in `f64` |
+//! | [`Subdivide`] | ≈ `N²/2` midpoints, no multiply | exact in floats; ≤ 0.5 unit per level in `Q16` | `2^k + 1` points at dyadic `t`, shifts only: the `Q16` method |
+//!
+//! Errors are checked against an exact (integer) reference in the tests of `tests/samplers.rs`.
+//!
+//! ```
+//! use dunas::{Bezier, Vec2, sampler::{Sampler, DeCasteljau}};
+//! let c = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(5.0, 10.0), Vec2::new(10.0, 0.0)])?;
+//! let mut out = [Vec2::default(); 5];
+//! let n = DeCasteljau.sample(&c, &mut out)?;
+//! assert_eq!(n, 5);
+//! assert_eq!(out[2], Vec2::new(5.0, 5.0));
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::curve::degree_scalar;
+use crate::{Bezier, Error, Point, Scalar};
+
+/// Most points one call writes (`2^24`, where `f32` still counts exactly).
+pub const MAX_SAMPLES: usize = 1 << 24;
+
+/// Writes points of a curve at uniformly spaced parameters into a caller's buffer.
+pub trait Sampler<P: Point, const N: usize> {
+    /// Writes samples of `curve` into the front of `out`, from `t = 0` to `t = 1` inclusive,
+    /// and returns how many it wrote (at most `out.len()`, see each sampler for the count).
+    ///
+    /// # Errors
+    /// [`Error::BufferTooSmall`] when `out` cannot hold the smallest run the sampler makes
+    /// (2 points for most). Nothing else can fail: the curve was checked when built.
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error>;
+}
+
+/// Uniform count for the samplers that fill the whole buffer.
+#[inline]
+fn uniform_count(len: usize) -> Result<usize, Error> {
+    if len < 2 {
+        Err(Error::BufferTooSmall {
+            needed: 2,
+            got: len,
+        })
+    } else {
+        Ok(len.min(MAX_SAMPLES))
+    }
+}
+
+/// The control points split into coordinate lanes (structure of arrays).
+#[inline]
+fn lanes<P: Point, const N: usize>(curve: &Bezier<P, N>) -> [[P::Scalar; N]; 3] {
+    let mut l = [[P::Scalar::ZERO; N]; 3];
+    for (i, p) in curve.points().iter().enumerate() {
+        for (d, lane) in l.iter_mut().enumerate().take(P::DIM) {
+            lane[i] = p.coord(d);
+        }
+    }
+    l
+}
+
+#[inline]
+fn de_casteljau_lane<S: Scalar, const N: usize>(lane: &[S; N], t: S) -> S {
+    let mut b = *lane;
+    for r in 1..N {
+        for i in 0..N - r {
+            b[i] = b[i] + (b[i + 1] - b[i]) * t;
+        }
+    }
+    b[0]
+}
+
+/// De Casteljau's algorithm at each `t = i / (n-1)`: `n = out.len()` points.
+///
+/// Cost per point: one division for `t` and `N(N-1)/2` lerps per coordinate. Every step is
+/// a convex combination, so the error stays near `N` rounding units of the largest
+/// coordinate at any degree (measured: under 0.003 px in `f32` at 10⁴ px, degree 7). In
+/// `Q16`, `t = i/(n-1)` is itself rounded to 2⁻¹⁶, which moves points by up to
+/// `|P'|·2⁻¹⁷` (≈ 0.4 px at 10⁴ px): use [`Subdivide`] there.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DeCasteljau;
+
+impl<P: Point, const N: usize> Sampler<P, N> for DeCasteljau {
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        let n = uniform_count(out.len())?;
+        let lanes = lanes(curve);
+        let m = (n - 1) as u32;
+        for (i, o) in out[..n].iter_mut().enumerate() {
+            let t = P::Scalar::ratio(i as u32, m);
+            for (d, lane) in lanes.iter().enumerate().take(P::DIM) {
+                o.set_coord(d, de_casteljau_lane(lane, t));
+            }
+        }
+        out[n - 1] = curve.end();
+        Ok(n)
+    }
+}
+
+/// Horner's rule on the power basis: `n = out.len()` points.
+///
+/// The control points are converted once to coefficients `a_j = C(d,j)·Δʲ P₀`
+/// (`d = N - 1`), whose size grows like `2^d` times the coordinates; evaluation then costs
+/// `d` multiply-adds per coordinate. Fast, but the large alternating coefficients cancel:
+/// the error grows like `2^d · d` rounding units of the coordinate size, and in `Q16` the
+/// coefficients saturate once `2^d · |P|` passes 32768 (degree 7 at about 250 px).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Horner;
+
+/// Power-basis coefficients of one lane: `p(t) = Σ a[j] t^j`.
+#[inline]
+fn power_coefficients<S: Scalar, const N: usize>(lane: &[S; N]) -> [S; N] {
+    // Forward differences Δʲ P₀, then scale by the binomials C(d, j).
+    let mut diff = *lane;
+    let mut a = [S::ZERO; N];
+    a[0] = diff[0];
+    let mut binom: usize = 1;
+    for j in 1..N {
+        for i in 0..N - j {
+            diff[i] = diff[i + 1] - diff[i];
+        }
+        binom = binom * (N - j) / j;
+        a[j] = diff[0] * degree_scalar::<S>(binom);
+    }
+    a
+}
+
+impl<P: Point, const N: usize> Sampler<P, N> for Horner {
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        let n = uniform_count(out.len())?;
+        let mut coef = lanes(curve);
+        for lane in coef.iter_mut().take(P::DIM) {
+            *lane = power_coefficients(lane);
+        }
+        let m = (n - 1) as u32;
+        for (i, o) in out[..n].iter_mut().enumerate() {
+            let t = P::Scalar::ratio(i as u32, m);
+            for (d, a) in coef.iter().enumerate().take(P::DIM) {
+                let mut v = a[N - 1];
+                for j in (0..N - 1).rev() {
+                    v = v * t + a[j];
+                }
+                o.set_coord(d, v);
+            }
+        }
+        out[0] = curve.start();
+        out[n - 1] = curve.end();
+        Ok(n)
+    }
+}
+
+/// Forward differencing: `n = out.len()` points, `N - 1` additions each.
+///
+/// The first `N` points are evaluated by de Casteljau and turned into a difference table;
+/// each further point is the running sum. Every addition's rounding is carried forward and
+/// amplified by the later sums, so the error grows with the count, about `n^(N-1)` rounding
+/// units: in `f32` a cubic at 1024 samples and 10⁴ px drifts by whole pixels; in `Q16` even
+/// 64 samples drift. Use it in `f64`, or for short runs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ForwardDiff;
+
+impl<P: Point, const N: usize> Sampler<P, N> for ForwardDiff {
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        let n = uniform_count(out.len())?;
+        let lanes = lanes(curve);
+        let m = (n - 1) as u32;
+        for (d, lane) in lanes.iter().enumerate().take(P::DIM) {
+            // Values at t = 0, h, ..., (N-1)h (extrapolating past 1 for tiny n), then the
+            // difference table D[k] = Δᵏ p(0).
+            let mut diff = [P::Scalar::ZERO; N];
+            for (k, v) in diff.iter_mut().enumerate() {
+                *v = de_casteljau_lane(lane, P::Scalar::ratio(k as u32, m));
+            }
+            for j in 1..N {
+                for k in (j..N).rev() {
+                    diff[k] -= diff[k - 1];
+                }
+            }
+            for o in out[..n].iter_mut() {
+                o.set_coord(d, diff[0]);
+                for k in 0..N - 1 {
+                    let next = diff[k + 1];
+                    diff[k] += next;
+                }
+            }
+        }
+        out[0] = curve.start();
+        out[n - 1] = curve.end();
+        Ok(n)
+    }
+}
+
+/// Bernstein weights tabulated once for `M` uniform samples of an `N`-point curve.
+///
+/// Each point is then `Σ w[i][j]·P[j]`: `N` multiply-adds per coordinate, Horner's cost,
+/// with weights that are all in `[0, 1]` and sum to 1, so the error stays at
+/// de Casteljau's level. The table holds `M × N` scalars (`4·M·N` bytes in `f32`): build
+/// it once per (curve size, sample count) and reuse it every frame.
+///
+/// ```
+/// use dunas::{Bezier, Vec2, sampler::{Sampler, BernsteinTable}};
+/// let table = BernsteinTable::<f32, 4, 33>::new();
+/// let c = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 2.0), Vec2::new(3.0, 2.0), Vec2::new(4.0, 0.0)])?;
+/// let mut out = [Vec2::default(); 40];
+/// assert_eq!(table.sample(&c, &mut out)?, 33); // always M points
+/// # Ok::<(), dunas::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct BernsteinTable<S, const N: usize, const M: usize> {
+    weights: [[S; N]; M],
+}
+
+impl<S: Scalar, const N: usize, const M: usize> BernsteinTable<S, N, M> {
+    /// Tabulates the weights at `t = i / (M-1)` by the Bernstein recursion
+    /// (`N²/2` multiply-adds per row, all convex). `M < 2` or `N < 2` does not compile.
+    pub fn new() -> Self {
+        const {
+            assert!(
+                M >= 2 && N >= 2,
+                "a table needs N >= 2 points and M >= 2 samples"
+            )
+        };
+        let mut weights = [[S::ZERO; N]; M];
+        for (i, w) in weights.iter_mut().enumerate() {
+            let t = S::ratio(i as u32, (M - 1) as u32);
+            let s = S::ONE - t;
+            w[0] = S::ONE;
+            for r in 1..N {
+                w[r] = w[r - 1] * t;
+                for j in (1..r).rev() {
+                    w[j] = w[j] * s + w[j - 1] * t;
+                }
+                w[0] = w[0] * s;
+            }
+        }
+        BernsteinTable { weights }
+    }
+
+    /// The weight row for sample `i` (`None` past the end).
+    pub fn row(&self, i: usize) -> Option<&[S; N]> {
+        self.weights.get(i)
+    }
+}
+
+impl<S: Scalar, const N: usize, const M: usize> Default for BernsteinTable<S, N, M> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<P: Point, const N: usize, const M: usize> Sampler<P, N> for BernsteinTable<P::Scalar, N, M> {
+    /// Writes exactly `M` points.
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        if out.len() < M {
+            return Err(Error::BufferTooSmall {
+                needed: M,
+                got: out.len(),
+            });
+        }
+        let lanes = lanes(curve);
+        for (o, w) in out[..M].iter_mut().zip(self.weights.iter()) {
+            for (d, lane) in lanes.iter().enumerate().take(P::DIM) {
+                let mut v = P::Scalar::ZERO;
+                for j in 0..N {
+                    v += lane[j] * w[j];
+                }
+                o.set_coord(d, v);
+            }
+        }
+        out[0] = curve.start();
+        out[M - 1] = curve.end();
+        Ok(M)
+    }
+}
+
+/// Recursive midpoint subdivision: `2^k + 1` points at the dyadic parameters `t = i / 2^k`,
+/// for the largest `k <= max_level` that fits in `out`.
+///
+/// Only additions and halvings (shifts in `Q16`): no multiplications and no rounded `t`,
+/// which makes it the method for chips without an FPU. Cost per point ≈ `N²/2` midpoints
+/// plus copying an `N`-point polygon; scratch space on the stack: `max_level + 1`
+/// polygons. Error: exact in floats (halving is exact); in `Q16` each level rounds by at most
+/// half a unit (2⁻¹⁷), about `1e-4` px at `k = 10` whatever the coordinate size.
+#[derive(Clone, Copy, Debug)]
+pub struct Subdivide {
+    /// Largest `k` to use (`2^k + 1` points); clamped to 16.
+    pub max_level: u32,
+}
+
+impl Subdivide {
+    /// Deepest subdivision: `2^16 + 1` points.
+    pub const MAX_LEVEL: u32 = 16;
+
+    /// The number of points written into a buffer of `len`, with the level: the largest
+    /// `2^k + 1 <= len`, `k <= max_level`. `None` when `len < 2`.
+    pub fn count_for(&self, len: usize) -> Option<(usize, u32)> {
+        if len < 2 {
+            return None;
+        }
+        let top = self.max_level.min(Self::MAX_LEVEL);
+        let mut k = 0;
+        while k < top && (1usize << (k + 1)) < len {
+            k += 1;
+        }
+        Some(((1usize << k) + 1, k))
+    }
+}
+
+impl Default for Subdivide {
+    /// Up to `2^16 + 1` points: the buffer length decides.
+    fn default() -> Self {
+        Subdivide {
+            max_level: Self::MAX_LEVEL,
+        }
+    }
+}
+
+impl<P: Point, const N: usize> Sampler<P, N> for Subdivide {
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        let (n, k) = self.count_for(out.len()).ok_or(Error::BufferTooSmall {
+            needed: 2,
+            got: out.len(),
+        })?;
+        // Depth-first: emit the left end of each leaf, keep right halves on a stack.
+        let mut stack = [(*curve, 0u32); Subdivide::MAX_LEVEL as usize + 1];
+        let mut top = 0;
+        let (mut cur, mut depth) = (*curve, 0u32);
+        let mut written = 0;
+        loop {
+            if depth >= k {
+                if let Some(o) = out.get_mut(written) {
+                    *o = cur.start();
+                }
+                written += 1;
+                if top == 0 {
+                    break;
+                }
+                top -= 1;
+                (cur, depth) = stack[top];
+            } else {
+                let (l, r) = cur.split_half();
+                if let Some(slot) = stack.get_mut(top) {
+                    *slot = (r, depth + 1);
+                    top += 1;
+                }
+                cur = l;
+                depth += 1;
+            }
+        }
+        out[n - 1] = curve.end();
+        Ok(n)
+    }
+}
+
+/// The sampler [`Bezier::sample`] uses: [`DeCasteljau`] in floats (exact endpoints,
+/// format-rounding error at any degree and count) and [`Subdivide`] in `Q16` (no
+/// multiplications, dyadic `t`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Auto;
+
+impl<P: Point, const N: usize> Sampler<P, N> for Auto {
+    fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        if P::Scalar::FIXED_POINT {
+            Subdivide::default().sample(curve, out)
+        } else {
+            DeCasteljau.sample(curve, out)
+        }
+    }
+}
+
+impl<P: Point, const N: usize> Bezier<P, N> {
+    /// Samples the curve into `out` with the format's default sampler ([`Auto`]) and
+    /// returns the count written: `out.len()` in floats, the largest `2^k + 1 <= out.len()`
+    /// in `Q16`.
+    ///
+    /// # Errors
+    /// [`Error::BufferTooSmall`] when `out` holds fewer than 2 points.
+    pub fn sample(&self, out: &mut [P]) -> Result<usize, Error> {
+        Auto.sample(self, out)
+    }
+}

@@ -1,0 +1,264 @@
+//! Smoothing a row of particles into a curve: the step between the physics and the screen.
+//!
+//! A rope simulated with `K` particles is drawn as a smooth curve with as many points as
+//! the screen needs. Four ways, chosen with [`Smoothing`]:
+//!
+//! - [`Smoothing::Bezier`]: one Bézier curve with the particles as control points (the
+//!   thesis's way). Smoothest (C∞), passes through the two ends only, and each particle
+//!   pulls the whole curve. De Casteljau costs `K²/2` lerps a point, so keep `K` small (≤ 16).
+//! - [`Smoothing::BSpline`]: the uniform cubic B-spline of the particles, written as `K - 1`
+//!   cubic Bézier pieces with C² joins. Passes through the ends, follows the particles
+//!   closely without touching the inner ones; 6 lerps a point whatever `K`.
+//! - [`Smoothing::CatmullRom`]: the Catmull-Rom spline, `K - 1` cubic pieces with C¹ joins
+//!   that pass through every particle. 6 lerps a point.
+//! - [`Smoothing::Polyline`]: straight segments between the particles, the unsmoothed
+//!   reference. 1 lerp a point.
+//!
+//! All of them write into the caller's buffer and spread the samples uniformly over the
+//! particle index (`u = i·(K-1)/(n-1)`), so each span gets the same number of points.
+//!
+//! ```
+//! use dunas::{Vec2, smooth::{self, Smoothing}};
+//! let rope = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, -1.0), Vec2::new(2.0, -1.0), Vec2::new(3.0, 0.0)];
+//! let mut out = [Vec2::default(); 31];
+//! let n = smooth::sample(Smoothing::CatmullRom, &rope, &mut out)?;
+//! assert_eq!(n, 31);
+//! assert_eq!(out[10], rope[1]); // Catmull-Rom passes through every particle
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::error::check_points;
+use crate::{Bezier, Error, Point, Scalar};
+
+/// How a row of particles becomes a curve. See the [module docs](self).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Smoothing {
+    /// One Bézier curve of degree `K - 1` over all the particles.
+    #[default]
+    Bezier,
+    /// Uniform cubic B-spline, C² (ends clamped by reflected phantom points).
+    BSpline,
+    /// Catmull-Rom spline through every particle, C¹.
+    CatmullRom,
+    /// Straight lines between the particles.
+    Polyline,
+}
+
+/// Samples the curve that `method` makes of `particles` into `out`; returns the count.
+///
+/// The count is `out.len()`, except for [`Smoothing::Bezier`] in `Q16`, which uses
+/// [`Subdivide`](crate::sampler::Subdivide) and writes the largest `2^k + 1 <= out.len()`.
+///
+/// # Errors
+/// [`Error::NonFinite`] / [`Error::OutOfRange`] when a particle is NaN, infinite, saturated
+/// or beyond [`Scalar::SAFE_RANGE`]; [`Error::BufferTooSmall`] when `out` holds fewer than 2.
+pub fn sample<P: Point, const K: usize>(
+    method: Smoothing,
+    particles: &[P; K],
+    out: &mut [P],
+) -> Result<usize, Error> {
+    const { assert!(K >= 2, "smoothing needs at least 2 particles") };
+    check_points(particles)?;
+    if out.len() < 2 {
+        return Err(Error::BufferTooSmall {
+            needed: 2,
+            got: out.len(),
+        });
+    }
+    match method {
+        Smoothing::Bezier => Bezier::new(*particles)?.sample(out),
+        Smoothing::BSpline => Ok(sample_spans(&bspline_spans(particles), out)),
+        Smoothing::CatmullRom => Ok(sample_spans(&catmull_rom_spans(particles), out)),
+        Smoothing::Polyline => Ok(sample_polyline(particles, out)),
+    }
+}
+
+/// Cubic Bézier control points of the `K - 1` B-spline spans (the last entry is unused).
+pub fn bspline_spans<P: Point, const K: usize>(d: &[P; K]) -> [[P; 4]; K] {
+    let sixth = P::Scalar::ratio(1, 6);
+    let third = P::Scalar::ratio(1, 3);
+    let two_thirds = P::Scalar::ratio(2, 3);
+    // Knot points (d[i-1] + 4 d[i] + d[i+1]) / 6, written as d[i] plus scaled differences
+    // so that no intermediate sum leaves the range; phantom ends make them d[0], d[K-1].
+    let knot = |i: usize| -> P {
+        if i == 0 || i == K - 1 {
+            d[i]
+        } else {
+            d[i] + (d[i - 1] - d[i]) * sixth + (d[i + 1] - d[i]) * sixth
+        }
+    };
+    let mut spans = [[d[0]; 4]; K];
+    for i in 0..K - 1 {
+        let step = d[i + 1] - d[i];
+        spans[i] = [
+            knot(i),
+            d[i] + step * third,
+            d[i] + step * two_thirds,
+            knot(i + 1),
+        ];
+    }
+    spans
+}
+
+/// Cubic Bézier control points of the `K - 1` Catmull-Rom spans (the last entry is unused).
+pub fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K]) -> [[P; 4]; K] {
+    let sixth = P::Scalar::ratio(1, 6);
+    let third = P::Scalar::ratio(1, 3);
+    let mut spans = [[p[0]; 4]; K];
+    for i in 0..K - 1 {
+        // Tangent at a particle: (next - previous) / 2; a phantom end reflected through
+        // the last particle makes it (next - this) at the ends.
+        let out_handle = if i == 0 {
+            (p[1] - p[0]) * third
+        } else {
+            (p[i + 1] - p[i - 1]) * sixth
+        };
+        let in_handle = if i + 2 >= K {
+            (p[i + 1] - p[i]) * third
+        } else {
+            (p[i + 2] - p[i]) * sixth
+        };
+        spans[i] = [p[i], p[i] + out_handle, p[i + 1] - in_handle, p[i + 1]];
+    }
+    spans
+}
+
+/// Walks `n` samples over `spans` uniform spans: yields (span, t) with `t` in `[0, 1]`.
+/// No division per sample for the span index (an incremental remainder).
+#[inline]
+fn for_each_param<S: Scalar>(spans: usize, n: usize, mut f: impl FnMut(usize, usize, S)) {
+    let m = n - 1;
+    let (mut span, mut rem) = (0usize, 0usize);
+    for i in 0..n {
+        // Parameter u = i·spans/m = span + rem/m; the last sample lands on the end of the
+        // last span rather than the start of a span that does not exist.
+        let (s, t) = if span >= spans {
+            (spans - 1, S::ONE)
+        } else {
+            (span, S::ratio(rem as u32, m as u32))
+        };
+        f(i, s, t);
+        rem += spans;
+        while rem >= m {
+            rem -= m;
+            span += 1;
+        }
+    }
+}
+
+fn sample_spans<P: Point, const K: usize>(spans: &[[P; 4]; K], out: &mut [P]) -> usize {
+    let n = out.len().min(crate::sampler::MAX_SAMPLES);
+    for_each_param::<P::Scalar>(K - 1, n, |i, s, t| {
+        let b = &spans[s];
+        let q0 = b[0].lerp(b[1], t);
+        let q1 = b[1].lerp(b[2], t);
+        let q2 = b[2].lerp(b[3], t);
+        let r0 = q0.lerp(q1, t);
+        let r1 = q1.lerp(q2, t);
+        out[i] = r0.lerp(r1, t);
+    });
+    out[0] = spans[0][0];
+    out[n - 1] = spans[K - 2][3];
+    n
+}
+
+fn sample_polyline<P: Point, const K: usize>(p: &[P; K], out: &mut [P]) -> usize {
+    let n = out.len().min(crate::sampler::MAX_SAMPLES);
+    for_each_param::<P::Scalar>(K - 1, n, |i, s, t| out[i] = p[s].lerp(p[s + 1], t));
+    out[n - 1] = p[K - 1];
+    n
+}
+
+#[cfg(all(test, any(feature = "std", feature = "libm")))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    fn zigzag() -> [Vec2<f64>; 6] {
+        core::array::from_fn(|i| Vec2::new(i as f64, if i % 2 == 0 { 0.0 } else { 1.0 }))
+    }
+
+    #[test]
+    fn every_method_hits_the_ends() {
+        let p = zigzag();
+        for m in [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::Polyline,
+        ] {
+            let mut out = [Vec2::default(); 17];
+            let n = sample(m, &p, &mut out).unwrap();
+            assert_eq!(n, 17);
+            assert_eq!(out[0], p[0], "{m:?}");
+            assert_eq!(out[16], p[5], "{m:?}");
+        }
+    }
+
+    #[test]
+    fn catmull_rom_and_polyline_pass_through_particles() {
+        let p = zigzag();
+        let mut out = [Vec2::default(); 26]; // 5 spans × 5 + 1: particle k at sample 5k
+        for m in [Smoothing::CatmullRom, Smoothing::Polyline] {
+            sample(m, &p, &mut out).unwrap();
+            for (k, &pk) in p.iter().enumerate() {
+                assert!((out[5 * k] - pk).length() < 1e-12, "{m:?} particle {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn bspline_joins_are_c2() {
+        let p = zigzag();
+        let s = bspline_spans(&p);
+        for i in 0..p.len() - 2 {
+            let (a, b) = (s[i], s[i + 1]);
+            assert_eq!(a[3], b[0]);
+            // C1: equal first derivatives; C2: equal second derivatives at the join.
+            assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);
+            let a2 = a[3] - a[2] * 2.0 + a[1];
+            let b2 = b[2] - b[1] * 2.0 + b[0];
+            assert!((a2 - b2).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn catmull_rom_joins_are_c1() {
+        let p = zigzag();
+        let s = catmull_rom_spans(&p);
+        for i in 0..p.len() - 2 {
+            let (a, b) = (s[i], s[i + 1]);
+            assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let mut p = zigzag();
+        let mut out = [Vec2::default(); 8];
+        assert_eq!(
+            sample(Smoothing::BSpline, &p, &mut out[..1]),
+            Err(Error::BufferTooSmall { needed: 2, got: 1 })
+        );
+        p[3].y = f64::NAN;
+        assert_eq!(
+            sample(Smoothing::Polyline, &p, &mut out),
+            Err(Error::NonFinite)
+        );
+    }
+
+    #[test]
+    fn straight_particles_give_a_straight_curve() {
+        let p: [Vec2<f64>; 5] = core::array::from_fn(|i| Vec2::new(2.0 * i as f64, 0.0));
+        for m in [Smoothing::Bezier, Smoothing::BSpline, Smoothing::CatmullRom] {
+            let mut out = [Vec2::default(); 9];
+            sample(m, &p, &mut out).unwrap();
+            for (i, o) in out.iter().enumerate() {
+                assert!(
+                    (o.x - i as f64).abs() < 1e-12 && o.y == 0.0,
+                    "{m:?} {i} {o:?}"
+                );
+            }
+        }
+    }
+}
