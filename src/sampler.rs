@@ -5,13 +5,19 @@
 //! `t = i / (n - 1)` into `out` and returns `n`, the count written. All of them write the end
 //! points exactly. Pick one by what the scene needs:
 //!
-//! | sampler | cost per point (per coordinate) | error | notes |
-//! |---|---|---|---|
-//! | [`DeCasteljau`] | `N(N-1)/2` multiply-adds + one division | a few rounding units × largest coordinate | stable at any degree, the reference |
-//! | [`BernsteinTable`] | `N` multiply-adds, weights read from a table | like de Casteljau | table of `M × N` weights built once for a fixed count `M` |
-//! | [`Horner`] | `N - 1` multiply-adds | grows as `2^(N-1)` × rounding × coordinate | power basis: cancels badly at degree 7, saturates in `Q16` |
-//! | [`ForwardDiff`] | `N - 1` additions | grows with the sample count (≈ `n^(N-1)` × rounding) | fastest; fine for short runs in `f64` |
-//! | [`Subdivide`] | ≈ `N²/2` midpoints, no multiply | exact in floats; ≤ 0.5 unit per level in `Q16` | `2^k + 1` points at dyadic `t`, shifts only: the `Q16` method |
+//! | sampler | cost per point (per coordinate) | error bound (`ε`: format epsilon, `R`: largest control coordinate) |
+//! |---|---|---|
+//! | [`BernsteinTable`] | `N` multiply-adds, weights from a table | `4·N·ε·R` — the per-frame default for floats |
+//! | [`DeCasteljau`] | `N(N-1)/2` lerps + one division | `4·(N-1)·ε·R` in floats; in `Q16` plus the rounded `t`: `(N-1)·D·2⁻¹⁷` (`D`: longest control leg) |
+//! | [`Horner`] | `N - 1` multiply-adds | `2^(N-1)·N·ε·R`: cancels at degree 7, saturates in `Q16` |
+//! | [`ForwardDiff`] | `N - 1` additions | `n·2^(N-1)·ε·R`, growing with the count `n` |
+//! | [`Subdivide`] | ≈ `N²/2` midpoints, no multiply | `(k+N)·ε·R` in floats; `k·(N-1)/2` units of 2⁻¹⁶ in `Q16` — the `Q16` default |
+//!
+//! Within 0.01 px (measured by `examples/sampler_errors.rs`): every method in `f64`;
+//! [`BernsteinTable`], [`DeCasteljau`] and [`Subdivide`] in `f32` up to 10⁴ px at degree 7;
+//! [`Horner`] in `f32` up to degree 3, in `Q16` up to degree 3 at 100 px; [`ForwardDiff`] in
+//! `f32` up to degree 3 at 100 px and 1024 samples, in `Q16` nowhere. Only [`Subdivide`]
+//! stays within 0.01 px in `Q16` at 10⁴ px.
 //!
 //! Errors are checked against an exact (integer) reference in the tests of `tests/samplers.rs`.
 //!
