@@ -92,3 +92,8 @@ pub use point::{Point, Vec2, Vec3};
 #[cfg(feature = "fixed")]
 pub use q16::Q16;
 pub use scalar::Scalar;
+
+/// The README's code blocks, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
