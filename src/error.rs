@@ -19,6 +19,35 @@ pub enum Error {
     },
     /// A tolerance or other parameter is zero, negative or otherwise unusable.
     InvalidParameter,
+    /// A spring names a particle index at or past the particle count.
+    IndexOutOfRange {
+        /// The offending index.
+        index: usize,
+        /// The number of particles.
+        len: usize,
+    },
+    /// A spring joins a particle to itself or repeats a pair already connected.
+    DuplicateSpring {
+        /// First particle.
+        a: usize,
+        /// Second particle.
+        b: usize,
+    },
+    /// A spring's rest length is zero (its two particles start at the same place) or not finite.
+    ZeroRestLength {
+        /// First particle.
+        a: usize,
+        /// Second particle.
+        b: usize,
+    },
+    /// More springs than the topology's compile-time capacity.
+    CapacityExceeded {
+        /// The capacity.
+        capacity: usize,
+    },
+    /// The simulation blew up during a step (a position or velocity became non-finite or left
+    /// the scene bounds). The state before the step was kept.
+    Diverged,
 }
 
 impl fmt::Display for Error {
@@ -30,6 +59,22 @@ impl fmt::Display for Error {
                 write!(f, "buffer too small: needs {needed} elements, has {got}")
             }
             Error::InvalidParameter => f.write_str("parameter is zero, negative or not finite"),
+            Error::IndexOutOfRange { index, len } => {
+                write!(f, "particle index {index} out of range for {len} particles")
+            }
+            Error::DuplicateSpring { a, b } => {
+                write!(
+                    f,
+                    "spring {a}-{b} repeats a connection or joins a particle to itself"
+                )
+            }
+            Error::ZeroRestLength { a, b } => write!(f, "spring {a}-{b} has zero rest length"),
+            Error::CapacityExceeded { capacity } => {
+                write!(f, "more springs than the capacity of {capacity}")
+            }
+            Error::Diverged => {
+                f.write_str("the simulation diverged; the state before the step was kept")
+            }
         }
     }
 }

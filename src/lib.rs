@@ -73,25 +73,38 @@ compile_error!(
 mod math;
 
 mod aabb;
+mod cloth;
 pub mod curve;
 mod error;
+pub mod force;
+pub mod integrator;
 pub mod lod;
 pub mod patch;
 pub mod point;
 #[cfg(feature = "fixed")]
 mod q16;
+mod rope;
 pub mod sampler;
 pub mod scalar;
+pub mod shape;
 pub mod smooth;
+pub mod spring;
+pub mod system;
+mod timestep;
 
 pub use aabb::Aabb;
+pub use cloth::Cloth;
 pub use curve::{Bezier, Cubic, Quadratic};
 pub use error::Error;
+pub use integrator::Integrator;
 pub use patch::{Bicubic, Patch};
 pub use point::{Point, Vec2, Vec3};
 #[cfg(feature = "fixed")]
 pub use q16::Q16;
+pub use rope::Rope;
 pub use scalar::Scalar;
+pub use system::MassSpring;
+pub use timestep::FixedTimestep;
 
 /// The README's code blocks, run as doc tests.
 #[cfg(doctest)]

@@ -37,6 +37,9 @@ pub trait Point:
     /// Euclidean length, overflow-free inside the format's range (see [`Scalar::norm`]).
     fn length(self) -> Self::Scalar;
 
+    /// Dot product. In `Q16` it saturates once `|a|·|b|` passes 32768.
+    fn dot(self, other: Self) -> Self::Scalar;
+
     /// Distance to `other`.
     #[inline]
     fn distance(self, other: Self) -> Self::Scalar {
@@ -135,12 +138,6 @@ impl<S: Scalar> Vec2<S> {
         Vec2::new(S::from_f64(x), S::from_f64(y))
     }
 
-    /// Dot product. In `Q16` it overflows once `|a|·|b|` passes 32768.
-    #[inline]
-    pub fn dot(self, o: Self) -> S {
-        self.x * o.x + self.y * o.y
-    }
-
     /// The z component of the 3D cross product (twice the signed triangle area).
     #[inline]
     pub fn cross(self, o: Self) -> S {
@@ -153,12 +150,6 @@ impl<S: Scalar> Vec3<S> {
     #[inline]
     pub fn from_f64(x: f64, y: f64, z: f64) -> Self {
         Vec3::new(S::from_f64(x), S::from_f64(y), S::from_f64(z))
-    }
-
-    /// Dot product. In `Q16` it overflows once `|a|·|b|` passes 32768.
-    #[inline]
-    pub fn dot(self, o: Self) -> S {
-        self.x * o.x + self.y * o.y + self.z * o.z
     }
 
     /// Cross product.
@@ -253,6 +244,12 @@ macro_rules! impl_ops {
             #[inline]
             fn length(self) -> S {
                 S::norm(&[$(self.$f),+])
+            }
+            #[inline]
+            fn dot(self, o: Self) -> S {
+                let mut s = S::ZERO;
+                $(s += self.$f * o.$f;)+
+                s
             }
         }
     };

@@ -73,6 +73,38 @@ pub fn sample<P: Point, const K: usize>(
     }
 }
 
+/// Length of the curve that `method` makes of `particles`, within `accuracy` (see
+/// [`Bezier::arclen`]); the polyline's length is exact.
+///
+/// # Errors
+/// As [`sample`], for bad particles.
+pub fn length<P: Point, const K: usize>(
+    method: Smoothing,
+    particles: &[P; K],
+    accuracy: P::Scalar,
+) -> Result<P::Scalar, Error> {
+    const { assert!(K >= 2, "smoothing needs at least 2 particles") };
+    check_points(particles)?;
+    let spans = match method {
+        Smoothing::Bezier => return Ok(Bezier::new(*particles)?.arclen(accuracy)),
+        Smoothing::Polyline => {
+            let mut len = P::Scalar::ZERO;
+            for w in particles.windows(2) {
+                len += w[0].distance(w[1]);
+            }
+            return Ok(len);
+        }
+        Smoothing::BSpline => bspline_spans(particles),
+        Smoothing::CatmullRom => catmull_rom_spans(particles),
+    };
+    let share = accuracy / P::Scalar::from_i16((K - 1).min(i16::MAX as usize) as i16);
+    let mut len = P::Scalar::ZERO;
+    for span in &spans[..K - 1] {
+        len += Bezier::new(*span)?.arclen(share);
+    }
+    Ok(len)
+}
+
 /// Cubic Bézier control points of the `K - 1` B-spline spans (the last entry is unused).
 pub fn bspline_spans<P: Point, const K: usize>(d: &[P; K]) -> [[P; 4]; K] {
     let sixth = P::Scalar::ratio(1, 6);

@@ -1,0 +1,158 @@
+//! A cloth: a grid of particles on structural, shear and bending springs, drawn as a
+//! Bézier patch.
+
+use core::ops::{Deref, DerefMut};
+
+use crate::shape::Grid;
+use crate::spring::{GridSprings, Material};
+use crate::system::{MassSpring, Settings};
+use crate::{Error, Patch, Point, Scalar, Vec3};
+
+/// A `U × V` cloth: a sail, a flag, a cape. The springs are implied by the grid
+/// ([`GridSprings`]), so an 8×8 sail in `f32` is under 2 KiB of state.
+///
+/// It derefs to its [`MassSpring`] (step, pin, move particles); particle `(i, j)` has flat
+/// index `j * U + i`. Drawing goes through the [`patch`](Cloth::patch) of its particles.
+///
+/// ```
+/// use dunas::{Cloth, Vec3, spring::Material, system::Settings};
+///
+/// let settings = Settings { gravity: Vec3::new(0.0, -9.8, 0.0), damping: 0.5, ..Settings::default() };
+/// let m = Material::new(200.0, 0.2)?;
+/// let mut sail: Cloth<Vec3<f32>, 8, 8> = Cloth::rectangle(
+///     Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0),
+///     2.0, [m, m, m], settings,
+/// )?;
+/// sail.pin_row(0)?; // hang it from its first row
+/// sail.step(1.0 / 60.0)?;
+/// let mut pos = [Vec3::default(); 16 * 16];
+/// let mut nor = [Vec3::default(); 16 * 16];
+/// sail.patch()?.sample_grid_with_normals(16, 16, &mut pos, &mut nor)?;
+/// # Ok::<(), dunas::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Cloth<P: Point, const U: usize, const V: usize> {
+    system: MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>>,
+}
+
+impl<P: Point, const U: usize, const V: usize> Cloth<P, U, V> {
+    /// A flat cloth with particle `(i, j)` at `origin + du·i/(U-1) + dv·j/(V-1)`: `du` and `dv`
+    /// are the whole edges. Total `mass` split evenly, nothing pinned; `materials` are the
+    /// structural, shear and bending springs, relaxed at the initial spacing.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a non-positive mass, [`Error::ZeroRestLength`] for a
+    /// zero edge, and the errors of [`MassSpring::new`].
+    pub fn rectangle(
+        origin: P,
+        du: P,
+        dv: P,
+        mass: P::Scalar,
+        materials: [Material<P::Scalar>; 3],
+        settings: Settings<P>,
+    ) -> Result<Self, Error> {
+        const {
+            assert!(
+                U >= 3 && V >= 3,
+                "a cloth needs at least 3×3 particles (bending springs)"
+            )
+        };
+        if !(mass > P::Scalar::ZERO && mass.is_finite()) {
+            return Err(Error::InvalidParameter);
+        }
+        let step_u = du * P::Scalar::ratio(1, (U - 1) as u32);
+        let step_v = dv * P::Scalar::ratio(1, (V - 1) as u32);
+        let positions: [[P; U]; V] = core::array::from_fn(|j| {
+            core::array::from_fn(|i| {
+                origin
+                    + du * P::Scalar::ratio(i as u32, (U - 1) as u32)
+                    + dv * P::Scalar::ratio(j as u32, (V - 1) as u32)
+            })
+        });
+        let springs = GridSprings {
+            rest_u: step_u.length(),
+            rest_v: step_v.length(),
+            rest_diagonals: [(step_u + step_v).length(), (step_u - step_v).length()],
+            structural: materials[0],
+            shear: materials[1],
+            bending: materials[2],
+        };
+        let tiny = P::Scalar::EPSILON;
+        if springs.rest_u <= tiny
+            || springs.rest_v <= tiny
+            || springs.rest_diagonals.iter().any(|&r| r <= tiny)
+        {
+            return Err(Error::ZeroRestLength { a: 0, b: 1 });
+        }
+        let w = P::Scalar::ratio((U * V) as u32, 1) / mass;
+        let system = MassSpring::new(positions, [[w; U]; V], springs, settings)?;
+        Ok(Cloth { system })
+    }
+
+    /// Pins every particle of row `j` (the edge along `u` at that `v`).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] for `j >= V`.
+    pub fn pin_row(&mut self, j: usize) -> Result<(), Error> {
+        if j >= V {
+            return Err(Error::IndexOutOfRange { index: j, len: V });
+        }
+        for i in 0..U {
+            self.system.set_inv_mass(j * U + i, P::Scalar::ZERO)?;
+        }
+        Ok(())
+    }
+
+    /// Pins every particle of column `i` (a mast along `v`).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] for `i >= U`.
+    pub fn pin_column(&mut self, i: usize) -> Result<(), Error> {
+        if i >= U {
+            return Err(Error::IndexOutOfRange { index: i, len: U });
+        }
+        for j in 0..V {
+            self.system.set_inv_mass(j * U + i, P::Scalar::ZERO)?;
+        }
+        Ok(())
+    }
+
+    /// The particles as a Bézier patch, ready to sample.
+    ///
+    /// # Errors
+    /// Never after a successful step (the step keeps positions in range).
+    pub fn patch(&self) -> Result<Patch<P, U, V>, Error> {
+        Patch::new(*self.system.position_array())
+    }
+}
+
+impl<S: Scalar, const U: usize, const V: usize> Cloth<Vec3<S>, U, V> {
+    /// Samples the smoothed surface: an `nu × nv` grid of positions and unit normals (see
+    /// [`Patch::sample_grid_with_normals`]); returns the point count.
+    ///
+    /// # Errors
+    /// As [`Patch::sample_grid_with_normals`].
+    pub fn sample(
+        &self,
+        nu: usize,
+        nv: usize,
+        positions: &mut [Vec3<S>],
+        normals: &mut [Vec3<S>],
+    ) -> Result<usize, Error> {
+        self.patch()?
+            .sample_grid_with_normals(nu, nv, positions, normals)
+    }
+}
+
+impl<P: Point, const U: usize, const V: usize> Deref for Cloth<P, U, V> {
+    type Target = MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>>;
+    fn deref(&self) -> &Self::Target {
+        &self.system
+    }
+}
+
+impl<P: Point, const U: usize, const V: usize> DerefMut for Cloth<P, U, V> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.system
+    }
+}

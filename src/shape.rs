@@ -1,0 +1,63 @@
+//! How particles are laid out in memory: a row (`Line`) or a grid (`Grid`).
+//!
+//! Stable Rust cannot write `U * V` in a type, so a cloth cannot store `[P; U * V]`. A
+//! [`Shape`] names the fixed-size array for one value per particle (`[T; N]` or
+//! `[[T; U]; V]`) and views it as a flat slice, so the physics is written once and its
+//! scratch arrays have the right size on the stack.
+
+/// A fixed particle layout. Implemented by [`Line`] and [`Grid`].
+pub trait Shape {
+    /// Number of particles.
+    const LEN: usize;
+    /// One `T` per particle.
+    type Of<T: Copy>: Copy;
+    /// An array with every element `value`.
+    fn filled<T: Copy>(value: T) -> Self::Of<T>;
+    /// The elements in order (row by row for a grid).
+    fn flat<T: Copy>(a: &Self::Of<T>) -> &[T];
+    /// The elements in order, mutable.
+    fn flat_mut<T: Copy>(a: &mut Self::Of<T>) -> &mut [T];
+}
+
+/// `N` particles in a row: a rope. Storage `[T; N]`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Line<const N: usize>;
+
+/// `V` rows of `U` particles: a cloth. Storage `[[T; U]; V]`, particle `(i, j)` at flat
+/// index `j * U + i`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Grid<const U: usize, const V: usize>;
+
+impl<const N: usize> Shape for Line<N> {
+    const LEN: usize = N;
+    type Of<T: Copy> = [T; N];
+    #[inline]
+    fn filled<T: Copy>(value: T) -> [T; N] {
+        [value; N]
+    }
+    #[inline]
+    fn flat<T: Copy>(a: &[T; N]) -> &[T] {
+        a
+    }
+    #[inline]
+    fn flat_mut<T: Copy>(a: &mut [T; N]) -> &mut [T] {
+        a
+    }
+}
+
+impl<const U: usize, const V: usize> Shape for Grid<U, V> {
+    const LEN: usize = U * V;
+    type Of<T: Copy> = [[T; U]; V];
+    #[inline]
+    fn filled<T: Copy>(value: T) -> [[T; U]; V] {
+        [[value; U]; V]
+    }
+    #[inline]
+    fn flat<T: Copy>(a: &[[T; U]; V]) -> &[T] {
+        a.as_flattened()
+    }
+    #[inline]
+    fn flat_mut<T: Copy>(a: &mut [[T; U]; V]) -> &mut [T] {
+        a.as_flattened_mut()
+    }
+}

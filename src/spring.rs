@@ -1,0 +1,454 @@
+//! Springs and the topologies that lay them out: chains, loops, hubs, grids, k-neighbourhood
+//! "surface springs" and explicit connection lists.
+//!
+//! Every topology is checked when it is built: an index past the particle count, a spring
+//! from a particle to itself, a repeated pair, a zero rest length or more springs than the
+//! compile-time capacity is an [`Error`] then, never later in the game loop.
+
+use crate::{Error, Point, Scalar};
+
+/// A spring between particles `a` and `b`, relaxed at length `rest`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spring<S> {
+    /// First particle (flat index).
+    pub a: u16,
+    /// Second particle (flat index).
+    pub b: u16,
+    /// Rest length, in coordinate units.
+    pub rest: S,
+}
+
+/// Stiffness and damping shared by a group of springs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material<S> {
+    /// Hooke constant `k`, force per unit of stretch (> 0).
+    pub stiffness: S,
+    /// Damping `c` along the spring, force per unit of closing speed (>= 0).
+    pub damping: S,
+}
+
+impl<S: Scalar> Material<S> {
+    /// A material; `stiffness` must be positive and finite, `damping` non-negative and finite.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] otherwise.
+    pub fn new(stiffness: S, damping: S) -> Result<Self, Error> {
+        let ok = stiffness > S::ZERO
+            && stiffness.is_finite()
+            && damping >= S::ZERO
+            && damping.is_finite();
+        if ok {
+            Ok(Material { stiffness, damping })
+        } else {
+            Err(Error::InvalidParameter)
+        }
+    }
+}
+
+/// Anything that lists springs to the physics: an explicit [`Springs`] list or the implied
+/// springs of a [`GridSprings`] cloth.
+pub trait Topology<S: Scalar> {
+    /// Calls `f(a, b, rest, material)` once per spring, with `a`, `b` flat particle indices
+    /// that were checked against the particle count when the topology was built.
+    fn for_each_spring(&self, f: impl FnMut(usize, usize, S, Material<S>));
+    /// The number of springs.
+    fn spring_count(&self) -> usize;
+}
+
+/// An explicit list of up to `CAP` springs of one material, stored inline.
+///
+/// Memory: `8 × CAP + 12` bytes in `f32`. Duplicate checks make building `O(CAP²)`, once.
+#[derive(Clone, Debug)]
+pub struct Springs<S, const CAP: usize> {
+    list: heapless::Vec<Spring<S>, CAP, u16>,
+    material: Material<S>,
+}
+
+impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
+    /// An empty list.
+    pub fn new(material: Material<S>) -> Self {
+        const { assert!(CAP <= u16::MAX as usize, "at most 65535 springs") };
+        Springs {
+            list: heapless::Vec::new(),
+            material,
+        }
+    }
+
+    /// The springs.
+    pub fn as_slice(&self) -> &[Spring<S>] {
+        &self.list
+    }
+
+    /// The shared material.
+    pub fn material(&self) -> Material<S> {
+        self.material
+    }
+
+    /// Changes the shared material.
+    pub fn set_material(&mut self, material: Material<S>) {
+        self.material = material;
+    }
+
+    /// Multiplies every rest length by `factor` (used to calibrate a rope's drawn length).
+    pub(crate) fn scale_rest(&mut self, factor: S) {
+        for s in self.list.iter_mut() {
+            s.rest = s.rest * factor;
+        }
+    }
+
+    /// Connects `a` and `b` with the given rest length; `len` is the particle count.
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`], [`Error::DuplicateSpring`] (also for `a == b`),
+    /// [`Error::ZeroRestLength`] (rest not positive and finite) or [`Error::CapacityExceeded`].
+    pub fn connect_with_rest(
+        &mut self,
+        len: usize,
+        a: usize,
+        b: usize,
+        rest: S,
+    ) -> Result<(), Error> {
+        for index in [a, b] {
+            if index >= len || index > u16::MAX as usize {
+                return Err(Error::IndexOutOfRange { index, len });
+            }
+        }
+        let (lo, hi) = if a < b {
+            (a as u16, b as u16)
+        } else {
+            (b as u16, a as u16)
+        };
+        if a == b
+            || self
+                .list
+                .iter()
+                .any(|s| s.a.min(s.b) == lo && s.a.max(s.b) == hi)
+        {
+            return Err(Error::DuplicateSpring { a, b });
+        }
+        if !(rest > S::EPSILON && rest.is_finite()) {
+            return Err(Error::ZeroRestLength { a, b });
+        }
+        self.list
+            .push(Spring {
+                a: a as u16,
+                b: b as u16,
+                rest,
+            })
+            .map_err(|_| Error::CapacityExceeded { capacity: CAP })
+    }
+
+    /// Connects `a` and `b` at their current distance in `positions`.
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest).
+    pub fn connect<P: Point<Scalar = S>>(
+        &mut self,
+        positions: &[P],
+        a: usize,
+        b: usize,
+    ) -> Result<(), Error> {
+        let rest = match (positions.get(a), positions.get(b)) {
+            (Some(pa), Some(pb)) => pa.distance(*pb),
+            _ => S::ZERO,
+        };
+        self.connect_with_rest(positions.len(), a, b, rest)
+    }
+
+    /// Springs for every listed pair, at the current distances.
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest), for the first bad pair.
+    pub fn from_pairs<P: Point<Scalar = S>>(
+        positions: &[P],
+        pairs: &[(usize, usize)],
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        let mut s = Springs::new(material);
+        for &(a, b) in pairs {
+            s.connect(positions, a, b)?;
+        }
+        Ok(s)
+    }
+
+    /// An open chain: `i` to `i + 1` (`N - 1` springs). A rope.
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest).
+    pub fn chain<P: Point<Scalar = S>>(
+        positions: &[P],
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        Self::surface_line(positions, 1, material)
+    }
+
+    /// A closed loop: the chain plus the last particle to the first (`N` springs).
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest).
+    pub fn closed_loop<P: Point<Scalar = S>>(
+        positions: &[P],
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        let mut s = Self::chain(positions, material)?;
+        s.connect(positions, positions.len().saturating_sub(1), 0)?;
+        Ok(s)
+    }
+
+    /// A hub: the chain plus every particle from the third on tied to the first
+    /// (`2N - 3` springs), the thesis's Merlin rope. The hub keeps the rope from stretching
+    /// away from its holder whatever the chain does.
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest).
+    pub fn hub<P: Point<Scalar = S>>(
+        positions: &[P],
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        let mut s = Self::chain(positions, material)?;
+        for i in 2..positions.len() {
+            s.connect(positions, 0, i)?;
+        }
+        Ok(s)
+    }
+
+    /// "Surface springs" along a row: every pair at most `k` apart in index (the thesis's
+    /// rigidity factor; `k = 1` is the chain, `k = 2` adds bending springs).
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest); [`Error::InvalidParameter`] for `k = 0`.
+    pub fn surface_line<P: Point<Scalar = S>>(
+        positions: &[P],
+        k: usize,
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        if k == 0 {
+            return Err(Error::InvalidParameter);
+        }
+        let mut s = Springs::new(material);
+        for d in 1..=k {
+            for i in 0..positions.len().saturating_sub(d) {
+                s.connect(positions, i, i + d)?;
+            }
+        }
+        Ok(s)
+    }
+
+    /// "Surface springs" on a `u × v` grid (flat index `j * u + i`): every pair whose
+    /// shortest path along grid edges has at most `k` edges. `k = 1` gives the structural
+    /// springs, `k = 2` adds shear (diagonal) and bending (two apart) springs.
+    ///
+    /// # Errors
+    /// As [`connect_with_rest`](Self::connect_with_rest); [`Error::InvalidParameter`] for
+    /// `k = 0` or `u * v != positions.len()`.
+    pub fn surface_grid<P: Point<Scalar = S>>(
+        positions: &[P],
+        u: usize,
+        v: usize,
+        k: usize,
+        material: Material<S>,
+    ) -> Result<Self, Error> {
+        if k == 0 || u.checked_mul(v) != Some(positions.len()) {
+            return Err(Error::InvalidParameter);
+        }
+        let mut s = Springs::new(material);
+        for j in 0..v {
+            for i in 0..u {
+                for dj in 0..=k.min(v - 1 - j) {
+                    let reach = k - dj;
+                    // Forward neighbours only, so every pair is added once.
+                    let i_lo = if dj == 0 {
+                        i + 1
+                    } else {
+                        i.saturating_sub(reach)
+                    };
+                    let i_hi = (i + reach).min(u - 1);
+                    for ni in i_lo..=i_hi {
+                        s.connect(positions, j * u + i, (j + dj) * u + ni)?;
+                    }
+                }
+            }
+        }
+        Ok(s)
+    }
+}
+
+impl<S: Scalar, const CAP: usize> Topology<S> for Springs<S, CAP> {
+    #[inline]
+    fn for_each_spring(&self, mut f: impl FnMut(usize, usize, S, Material<S>)) {
+        for s in self.list.iter() {
+            f(s.a as usize, s.b as usize, s.rest, self.material);
+        }
+    }
+    fn spring_count(&self) -> usize {
+        self.list.len()
+    }
+}
+
+/// The springs of a `U × V` cloth grid, implied by the grid instead of stored: structural
+/// (to the 4 neighbours), shear (diagonals) and bending (two apart), each class with its own
+/// material and one rest length per direction. 8×8 has 306 springs and costs 60 bytes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridSprings<S, const U: usize, const V: usize> {
+    /// Rest length between neighbours along a row (`u`).
+    pub rest_u: S,
+    /// Rest length between neighbours along a column (`v`).
+    pub rest_v: S,
+    /// Rest lengths of the diagonals: `[0]` joins `(i, j)` to `(i+1, j+1)`, `[1]` joins
+    /// `(i+1, j)` to `(i, j+1)` (equal on a rectangular grid).
+    pub rest_diagonals: [S; 2],
+    /// Structural springs resist stretching.
+    pub structural: Material<S>,
+    /// Shear springs keep the squares square.
+    pub shear: Material<S>,
+    /// Bending springs resist folding.
+    pub bending: Material<S>,
+}
+
+impl<S: Scalar, const U: usize, const V: usize> GridSprings<S, U, V> {
+    /// The number of springs: `V(U-1) + U(V-1) + 2(U-1)(V-1) + V(U-2) + U(V-2)`.
+    pub const COUNT: usize =
+        V * (U - 1) + U * (V - 1) + 2 * (U - 1) * (V - 1) + V * (U - 2) + U * (V - 2);
+}
+
+impl<S: Scalar, const U: usize, const V: usize> Topology<S> for GridSprings<S, U, V> {
+    fn for_each_spring(&self, mut f: impl FnMut(usize, usize, S, Material<S>)) {
+        let two = S::ONE + S::ONE;
+        for j in 0..V {
+            for i in 0..U {
+                let k = j * U + i;
+                if i + 1 < U {
+                    f(k, k + 1, self.rest_u, self.structural);
+                }
+                if j + 1 < V {
+                    f(k, k + U, self.rest_v, self.structural);
+                    if i + 1 < U {
+                        f(k, k + U + 1, self.rest_diagonals[0], self.shear);
+                        f(k + 1, k + U, self.rest_diagonals[1], self.shear);
+                    }
+                }
+                if i + 2 < U {
+                    f(k, k + 2, self.rest_u * two, self.bending);
+                }
+                if j + 2 < V {
+                    f(k, k + 2 * U, self.rest_v * two, self.bending);
+                }
+            }
+        }
+    }
+    fn spring_count(&self) -> usize {
+        Self::COUNT
+    }
+}
+
+#[cfg(all(test, any(feature = "std", feature = "libm")))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    fn row(n: usize) -> std::vec::Vec<Vec2<f32>> {
+        (0..n).map(|i| Vec2::new(i as f32, 0.0)).collect()
+    }
+
+    fn mat() -> Material<f32> {
+        Material::new(10.0, 0.1).unwrap()
+    }
+
+    #[test]
+    fn topologies_have_the_expected_counts() {
+        let p = row(8);
+        assert_eq!(
+            Springs::<f32, 7>::chain(&p, mat()).unwrap().spring_count(),
+            7
+        );
+        assert_eq!(
+            Springs::<f32, 8>::closed_loop(&p, mat())
+                .unwrap()
+                .spring_count(),
+            8
+        );
+        assert_eq!(
+            Springs::<f32, 13>::hub(&p, mat()).unwrap().spring_count(),
+            13
+        );
+        assert_eq!(
+            Springs::<f32, 13>::surface_line(&p, 2, mat())
+                .unwrap()
+                .spring_count(),
+            13
+        );
+        let grid: std::vec::Vec<_> = (0..64)
+            .map(|k| Vec2::new((k % 8) as f32, (k / 8) as f32))
+            .collect();
+        let s = Springs::<f32, 400>::surface_grid(&grid, 8, 8, 2, mat()).unwrap();
+        assert_eq!(s.spring_count(), GridSprings::<f32, 8, 8>::COUNT);
+        assert_eq!(GridSprings::<f32, 8, 8>::COUNT, 306);
+        assert_eq!(GridSprings::<f32, 20, 20>::COUNT, 2202);
+        let s1 = Springs::<f32, 400>::surface_grid(&grid, 8, 8, 1, mat()).unwrap();
+        assert_eq!(s1.spring_count(), 112);
+    }
+
+    #[test]
+    fn implied_grid_springs_match_surface_springs() {
+        let grid: std::vec::Vec<_> = (0..20)
+            .map(|k| Vec2::new((k % 5) as f32, (k / 5) as f32))
+            .collect();
+        let explicit = Springs::<f32, 100>::surface_grid(&grid, 5, 4, 2, mat()).unwrap();
+        let implied = GridSprings::<f32, 5, 4> {
+            rest_u: 1.0,
+            rest_v: 1.0,
+            rest_diagonals: [2f32.sqrt(); 2],
+            structural: mat(),
+            shear: mat(),
+            bending: mat(),
+        };
+        let mut pairs = std::vec::Vec::new();
+        implied.for_each_spring(|a, b, rest, _| pairs.push((a.min(b), a.max(b), rest)));
+        assert_eq!(pairs.len(), explicit.spring_count());
+        for s in explicit.as_slice() {
+            let (a, b) = (s.a.min(s.b) as usize, s.a.max(s.b) as usize);
+            let found = pairs
+                .iter()
+                .find(|p| p.0 == a && p.1 == b)
+                .expect("same pairs");
+            assert!((found.2 - s.rest).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn construction_errors() {
+        let p = row(4);
+        let mut s = Springs::<f32, 3>::new(mat());
+        assert_eq!(
+            s.connect(&p, 0, 4),
+            Err(Error::IndexOutOfRange { index: 4, len: 4 })
+        );
+        assert_eq!(
+            s.connect(&p, 2, 2),
+            Err(Error::DuplicateSpring { a: 2, b: 2 })
+        );
+        s.connect(&p, 0, 1).unwrap();
+        assert_eq!(
+            s.connect(&p, 1, 0),
+            Err(Error::DuplicateSpring { a: 1, b: 0 })
+        );
+        let same = [Vec2::new(1.0f32, 1.0), Vec2::new(1.0, 1.0)];
+        assert_eq!(
+            s.connect(&same, 0, 1),
+            Err(Error::ZeroRestLength { a: 0, b: 1 })
+        );
+        s.connect(&p, 1, 2).unwrap();
+        s.connect(&p, 2, 3).unwrap();
+        assert_eq!(
+            s.connect(&p, 0, 3),
+            Err(Error::CapacityExceeded { capacity: 3 })
+        );
+        assert_eq!(
+            Springs::<f32, 2>::chain(&p, mat()).err(),
+            Some(Error::CapacityExceeded { capacity: 2 })
+        );
+        assert_eq!(Material::new(0.0f32, 1.0), Err(Error::InvalidParameter));
+        assert_eq!(Material::new(1.0f32, -1.0), Err(Error::InvalidParameter));
+        assert_eq!(Material::new(f32::NAN, 1.0), Err(Error::InvalidParameter));
+    }
+}

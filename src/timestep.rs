@@ -1,0 +1,72 @@
+//! The game-loop helper: a fixed simulation step fed by whatever the frame took.
+
+use crate::{Error, Scalar};
+
+/// Turns variable frame times into a whole number of fixed simulation steps.
+///
+/// Physics is steadier and reproducible at a fixed step; the renderer runs at whatever rate
+/// it gets. Each frame, [`advance`](Self::advance) adds the frame time to an accumulator and
+/// says how many fixed steps to run. A hitch (the game paused in a debugger, a 1 s load
+/// spike) is clamped to `max_frame`, so the simulation slows down for that frame instead of
+/// running hundreds of steps; a NaN, infinite or negative frame time counts as 0.
+///
+/// ```
+/// use dunas::FixedTimestep;
+/// let mut clock = FixedTimestep::new(1.0 / 60.0, 0.1)?;
+/// assert_eq!(clock.advance(1.0 / 30.0), 2); // a 30 fps frame: two 60 Hz steps
+/// assert_eq!(clock.advance(1.0), 6); // a 1 s hitch: clamped to 0.1 s
+/// assert_eq!(clock.advance(f32::NAN), 0);
+/// # Ok::<(), dunas::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedTimestep<S> {
+    step: S,
+    max_frame: S,
+    accumulator: S,
+}
+
+impl<S: Scalar> FixedTimestep<S> {
+    /// A clock with the given step (seconds) and longest frame it will catch up on.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] unless `0 < step <= max_frame`, both finite.
+    pub fn new(step: S, max_frame: S) -> Result<Self, Error> {
+        if step > S::ZERO && step <= max_frame && max_frame.is_finite() {
+            Ok(FixedTimestep {
+                step,
+                max_frame,
+                accumulator: S::ZERO,
+            })
+        } else {
+            Err(Error::InvalidParameter)
+        }
+    }
+
+    /// The fixed step (seconds).
+    pub fn step(&self) -> S {
+        self.step
+    }
+
+    /// Adds a frame's duration and returns how many fixed steps to run now (at most
+    /// `ceil(max_frame / step)`).
+    pub fn advance(&mut self, frame: S) -> u32 {
+        let frame = if frame > S::ZERO && frame.is_finite() {
+            frame.min(self.max_frame)
+        } else {
+            S::ZERO
+        };
+        self.accumulator += frame;
+        let mut steps = 0;
+        while self.accumulator >= self.step {
+            self.accumulator -= self.step;
+            steps += 1;
+        }
+        steps
+    }
+
+    /// How far the accumulator is into the next step, in `[0, 1)`: blend the last two
+    /// physics states by this to draw between steps.
+    pub fn alpha(&self) -> S {
+        (self.accumulator / self.step).max(S::ZERO).min(S::ONE)
+    }
+}
