@@ -371,32 +371,42 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
     /// [`Error::InvalidParameter`] for a negative, NaN or infinite `dt` (nothing changes).
     /// [`Error::Diverged`] when a position or velocity came out non-finite or beyond
     /// [`Settings::bounds`]: the state before the step is restored.
-    pub fn step_with<F: ForceField<P>>(
-        &mut self,
-        dt: P::Scalar,
-        mut forces: F,
-    ) -> Result<StepInfo<P::Scalar>, Error> {
+    pub fn step_with<F: ForceField<P>>(&mut self, dt: P::Scalar, mut forces: F) -> Result<StepInfo<P::Scalar>, Error> {
         if !(dt >= P::Scalar::ZERO && dt.is_finite()) {
             return Err(Error::InvalidParameter);
         }
         if dt == P::Scalar::ZERO {
-            return Ok(StepInfo {
-                substeps: 0,
-                simulated: P::Scalar::ZERO,
-            });
+            return Ok(StepInfo { substeps: 0, simulated: P::Scalar::ZERO });
         }
         let (n, h) = self.substeps_for(dt);
+        self.guarded(n, h, &mut forces)?;
+        Ok(StepInfo { substeps: n, simulated: h * P::Scalar::from_i16(n as i16) })
+    }
+
+    /// One integrator step of exactly `h`, without the substeps that keep it stable: for
+    /// measuring an integrator at its limits. Respecting [`Integrator::stability_limit`] is
+    /// up to the caller; divergence is still caught and undone.
+    ///
+    /// # Errors
+    /// As [`step_with`](Self::step_with).
+    pub fn step_once<F: ForceField<P>>(&mut self, h: P::Scalar, mut forces: F) -> Result<(), Error> {
+        if !(h > P::Scalar::ZERO && h.is_finite()) {
+            return if h == P::Scalar::ZERO { Ok(()) } else { Err(Error::InvalidParameter) };
+        }
+        self.guarded(1, h, &mut forces)
+    }
+
+    /// `n` substeps of `h`, undone if the result is not sane.
+    fn guarded<F: ForceField<P>>(&mut self, n: u16, h: P::Scalar, forces: &mut F) -> Result<(), Error> {
         let saved = (self.pos, self.vel, self.time);
         for _ in 0..n {
             match self.settings.integrator {
-                Integrator::ExplicitEuler => self.explicit_euler(h, &mut forces),
-                Integrator::SymplecticEuler => self.symplectic_euler(h, &mut forces),
-                Integrator::Verlet => self.verlet(h, &mut forces),
-                Integrator::Rk4 => self.rk4(h, &mut forces),
-                Integrator::ImplicitEuler { iterations } => {
-                    self.implicit_euler(h, iterations, &mut forces)
-                }
-                Integrator::Xpbd { substeps } => self.xpbd(h, substeps, &mut forces),
+                Integrator::ExplicitEuler => self.explicit_euler(h, forces),
+                Integrator::SymplecticEuler => self.symplectic_euler(h, forces),
+                Integrator::Verlet => self.verlet(h, forces),
+                Integrator::Rk4 => self.rk4(h, forces),
+                Integrator::ImplicitEuler { iterations } => self.implicit_euler(h, iterations, forces),
+                Integrator::Xpbd { substeps } => self.xpbd(h, substeps, forces),
             }
             self.time += h;
         }
@@ -404,11 +414,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
             flush_tiny(v);
         }
         if self.is_sane() {
-            let simulated = h * P::Scalar::from_i16(n as i16);
-            Ok(StepInfo {
-                substeps: n,
-                simulated,
-            })
+            Ok(())
         } else {
             (self.pos, self.vel, self.time) = saved;
             Err(Error::Diverged)

@@ -1,0 +1,479 @@
+//! The physics against analytic references: the damped oscillator, the pendulum, the
+//! catenary, the normal modes of a hanging chain, conservation laws, and stability exactly at
+//! each integrator's documented limit.
+#![cfg(any(feature = "std", feature = "libm"))]
+
+use std::f64::consts::PI;
+
+use dunas::shape::Line;
+use dunas::spring::{Material, Springs};
+use dunas::system::Settings;
+use dunas::{Error, Integrator, MassSpring, Point, Vec2};
+
+type Chain<const N: usize, const CAP: usize> = MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>>;
+
+const ALL: [Integrator; 6] = [
+    Integrator::ExplicitEuler,
+    Integrator::SymplecticEuler,
+    Integrator::Verlet,
+    Integrator::Rk4,
+    Integrator::ImplicitEuler { iterations: 16 },
+    Integrator::Xpbd { substeps: 1 },
+];
+
+/// A unit mass on a spring (rest 1) to a pinned particle at the origin, pulled out by `a`.
+fn oscillator(k: f64, c: f64, integrator: Integrator, a: f64) -> Chain<2, 1> {
+    let pos = [Vec2::new(0.0, 0.0), Vec2::new(1.0 + a, 0.0)];
+    let mut springs = Springs::new(Material::new(k, c).unwrap());
+    springs.connect_with_rest(2, 0, 1, 1.0).unwrap();
+    let settings = Settings { integrator, ..Settings::default() };
+    MassSpring::new(pos, [0.0, 1.0], springs, settings).unwrap()
+}
+
+/// Times of upward zero crossings of a sampled signal (linear interpolation).
+fn up_crossings(samples: &[(f64, f64)]) -> Vec<f64> {
+    samples
+        .windows(2)
+        .filter(|w| w[0].1 < 0.0 && w[1].1 >= 0.0)
+        .map(|w| w[0].0 + (w[1].0 - w[0].0) * (-w[0].1) / (w[1].1 - w[0].1))
+        .collect()
+}
+
+/// Mean period between upward crossings.
+fn period(samples: &[(f64, f64)]) -> f64 {
+    let c = up_crossings(samples);
+    assert!(c.len() >= 3, "too few oscillations");
+    (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64
+}
+
+fn run<const N: usize, const CAP: usize>(
+    sys: &mut Chain<N, CAP>,
+    dt: f64,
+    seconds: f64,
+    mut probe: impl FnMut(&Chain<N, CAP>) -> f64,
+) -> Vec<(f64, f64)> {
+    let steps = (seconds / dt).round() as usize;
+    let mut out = Vec::with_capacity(steps + 1);
+    out.push((0.0, probe(sys)));
+    for i in 1..=steps {
+        sys.step(dt).unwrap();
+        out.push((i as f64 * dt, probe(sys)));
+    }
+    out
+}
+
+#[test]
+fn damped_oscillator_period_and_decay() {
+    let (k, c) = (100.0, 0.4); // ω0 = 10 rad/s, ζ = 0.02
+    let (w0, zeta) = (10.0f64, 0.02f64);
+    let wd = w0 * (1.0 - zeta * zeta).sqrt();
+    let exact_period = 2.0 * PI / wd;
+    let exact_decay = (-zeta * w0 * exact_period).exp(); // amplitude ratio per period
+    let dt = 1.0 / 600.0;
+    for integrator in ALL {
+        let mut sys = oscillator(k, c, integrator, 0.1);
+        let samples = run(&mut sys, dt, 4.0, |s| s.positions()[1].x - 1.0);
+        let measured_period = period(&samples);
+        // Amplitude ratio between the first and the third full period.
+        let cross = up_crossings(&samples);
+        let peak = |from: f64, to: f64| {
+            samples.iter().filter(|s| s.0 >= from && s.0 < to).map(|s| s.1.abs()).fold(0.0, f64::max)
+        };
+        let decay = (peak(cross[2], cross[3]) / peak(cross[0], cross[1])).powf(0.5);
+        let period_err = (measured_period - exact_period).abs() / exact_period;
+        let decay_err = (decay - exact_decay) / exact_decay;
+        eprintln!("{integrator:?}: period error {period_err:.2e}, decay error {decay_err:+.2e}");
+        match integrator {
+            Integrator::Rk4 => assert!(period_err < 1e-6 && decay_err.abs() < 1e-4),
+            Integrator::Verlet => assert!(period_err < 5e-4 && decay_err.abs() < 1e-3),
+            Integrator::SymplecticEuler => assert!(period_err < 1e-3 && decay_err.abs() < 1e-3),
+            // Explicit Euler pumps energy in: the amplitude decays slower than it should.
+            Integrator::ExplicitEuler => assert!(period_err < 1e-3 && decay_err > 0.0),
+            // Backward Euler and XPBD damp numerically: faster decay than the exact one.
+            _ => assert!(period_err < 1e-2 && decay_err < 0.0, "{integrator:?}"),
+        }
+    }
+}
+
+#[test]
+fn small_angle_pendulum_period() {
+    let (g, len, theta) = (9.81f64, 1.0f64, 0.05f64);
+    // Large-amplitude correction to second order: T = 2π sqrt(L/g) (1 + θ²/16).
+    for (integrator, k) in [(Integrator::Xpbd { substeps: 8 }, 1e7), (Integrator::SymplecticEuler, 1e5)] {
+        // A stiff spring stretches by m·g/k, which lengthens the pendulum.
+        let stretched = len + g / k;
+        let exact = 2.0 * PI * (stretched / g).sqrt() * (1.0 + theta * theta / 16.0);
+        let pos = [Vec2::new(0.0, 0.0), Vec2::new(stretched * theta.sin(), -stretched * theta.cos())];
+        let mut springs = Springs::new(Material::new(k, 0.0).unwrap());
+        springs.connect_with_rest(2, 0, 1, len).unwrap();
+        let settings = Settings { integrator, gravity: Vec2::new(0.0, -g), ..Settings::default() };
+        let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).unwrap();
+        let samples = run(&mut sys, 1.0 / 120.0, 12.0, |s| s.positions()[1].x);
+        let err = (period(&samples) - exact).abs() / exact;
+        eprintln!("pendulum {integrator:?}: period error {err:.2e}");
+        assert!(err < 1e-4, "{integrator:?}: {err}");
+    }
+}
+
+/// Catenary parameter `a` with `2a·sinh(span / 2a) = length`, by bisection.
+fn catenary_a(span: f64, length: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-3f64, 1e6f64);
+    for _ in 0..200 {
+        let mid = (lo * hi).sqrt();
+        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length { lo = mid } else { hi = mid }
+    }
+    (lo * hi).sqrt()
+}
+
+/// A chain of `N` particles hanging at rest between pins at (±span/2, 0); returns the largest
+/// vertical distance to the catenary of the same length, relative to the sag.
+fn catenary_error<const N: usize, const CAP: usize>(span: f64, length: f64) -> f64 {
+    let seg = length / (N - 1) as f64;
+    // Start on a V shape of the right length so that the springs start at rest length.
+    let half_dx = span / 2.0 / ((N - 1) as f64 / 2.0);
+    let dy = (seg * seg - half_dx * half_dx).sqrt();
+    let pos: [Vec2<f64>; N] = core::array::from_fn(|i| {
+        let from_mid = (i as f64 - (N - 1) as f64 / 2.0).abs();
+        Vec2::new(-span / 2.0 + i as f64 * half_dx, -((N - 1) as f64 / 2.0 - from_mid) * dy)
+    });
+    let mut springs = Springs::new(Material::new(1e7, 0.0).unwrap());
+    for i in 0..N - 1 {
+        springs.connect_with_rest(N, i, i + 1, seg).unwrap();
+    }
+    let mut inv = [N as f64; N]; // total mass 1
+    inv[0] = 0.0;
+    inv[N - 1] = 0.0;
+    // Backward Euler with a converged CG settles a very stiff chain in large steps.
+    let settings = Settings {
+        integrator: Integrator::ImplicitEuler { iterations: 200 },
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    };
+    let mut sys: Chain<N, CAP> = MassSpring::new(pos, inv, springs, settings).unwrap();
+    for _ in 0..600 {
+        sys.step(1.0 / 30.0).unwrap();
+    }
+    let speed = sys.velocities().iter().map(|v| v.length()).fold(0.0, f64::max);
+    assert!(speed < 1e-6, "not at rest: {speed}");
+    let a = catenary_a(span, length);
+    let c = -a * (span / (2.0 * a)).cosh();
+    let sag = -(a + c);
+    sys.positions()
+        .iter()
+        .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn hanging_chain_matches_the_catenary() {
+    let e12 = catenary_error::<12, 11>(4.0, 5.0);
+    let e40 = catenary_error::<40, 39>(4.0, 5.0);
+    eprintln!("catenary: N=12 {e12:.2e} of the sag, N=40 {e40:.2e}");
+    // Lumped masses converge to the continuous catenary as the chain gets finer.
+    assert!(e12 < 1e-2 && e40 < 1e-3 && e40 < e12 / 4.0, "{e12} {e40}");
+}
+
+/// Eigenvalues and eigenvectors of a small symmetric matrix by cyclic Jacobi rotations.
+fn jacobi_eigen<const N: usize>(mut a: [[f64; N]; N]) -> ([f64; N], [[f64; N]; N]) {
+    let mut v = [[0.0; N]; N];
+    for (i, row) in v.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for _ in 0..100 {
+        for p in 0..N {
+            for q in p + 1..N {
+                if a[p][q].abs() < 1e-300 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+                for k in 0..N {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for k in 0..N {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+                for row in v.iter_mut() {
+                    let (vkp, vkq) = (row[p], row[q]);
+                    row[p] = c * vkp - s * vkq;
+                    row[q] = s * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    (core::array::from_fn(|i| a[i][i]), v)
+}
+
+#[test]
+fn hanging_chain_normal_modes() {
+    const N: usize = 8; // particles below the pin
+    let (g, len) = (9.81f64, 2.0f64);
+    let l = len / N as f64;
+    // Small transverse motion of N equal masses under their own weight: ẍ = -(g/l)·A·x with
+    // tension (N - i) m g above particle i (0-based from the top).
+    let mut a = [[0.0; N]; N];
+    for i in 0..N {
+        let above = (N - i) as f64;
+        let below = (N - i - 1) as f64;
+        a[i][i] = above + below;
+        if i + 1 < N {
+            a[i][i + 1] = -below;
+            a[i + 1][i] = -below;
+        }
+    }
+    let (lambda, vecs) = jacobi_eigen(a);
+    let mut order: Vec<usize> = (0..N).collect();
+    order.sort_by(|&x, &y| lambda[x].total_cmp(&lambda[y]));
+    let continuum = [2.4048, 5.5201, 8.6537].map(|j: f64| j / 2.0 * (g / len).sqrt());
+    for (mode, &idx) in order.iter().take(3).enumerate() {
+        let exact = (g / l * lambda[idx]).sqrt();
+        let below_continuum = 1.0 - exact / continuum[mode];
+        // The discrete chain's modes sit below the continuum's (2.9% for the fundamental).
+        assert!(below_continuum > 0.0 && below_continuum < 0.12, "mode {mode}: {below_continuum}");
+        if mode == 0 {
+            assert!((below_continuum - 0.029).abs() < 0.002, "fundamental: {below_continuum}");
+        }
+        // Start in the mode's shape at 0.2% amplitude (small slopes, linear regime) and time it.
+        let shape: Vec<f64> = (0..N).map(|i| vecs[i][idx]).collect();
+        let peak = shape.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        // Stiff enough that stretching under the chain's weight shifts ω by < 0.05%; each
+        // segment starts at its stretched equilibrium length (rest + tension / k) so that the
+        // sideways shape excites no longitudinal vibration.
+        let k = 1e6;
+        let mut pos = [Vec2::new(0.0, 0.0); N + 1];
+        for i in 0..N {
+            let seg = l + (N - i) as f64 * g / k;
+            let x = 0.002 * len * shape[i] / peak;
+            let dx = x - pos[i].x;
+            pos[i + 1] = Vec2::new(x, pos[i].y - (seg * seg - dx * dx).sqrt());
+        }
+        let mut springs = Springs::new(Material::new(k, 0.0).unwrap());
+        for i in 0..N {
+            springs.connect_with_rest(N + 1, i, i + 1, l).unwrap();
+        }
+        let mut inv = [1.0; N + 1];
+        inv[0] = 0.0;
+        let settings = Settings {
+            integrator: Integrator::SymplecticEuler,
+            gravity: Vec2::new(0.0, -g),
+            ..Settings::default()
+        };
+        let mut sys: Chain<{ N + 1 }, N> = MassSpring::new(pos, inv, springs, settings).unwrap();
+        let probe = shape.iter().map(|x| x.abs()).enumerate().fold((0, 0.0), |m, (i, x)| if x > m.1 { (i, x) } else { m }).0;
+        let samples = run(&mut sys, 1.0 / 240.0, 6.0 * 2.0 * PI / exact, |s| s.positions()[probe + 1].x);
+        let measured = 2.0 * PI / period(&samples);
+        let err = (measured - exact).abs() / exact;
+        eprintln!("mode {mode}: exact ω {exact:.4}, simulated {measured:.4} ({err:.2e}), {below_continuum:.3} below the continuum");
+        assert!(err < 1e-3, "mode {mode}: {err}");
+    }
+}
+
+/// A free triangle of unequal masses on springs, set spinning and stretched, no gravity.
+fn free_triangle(integrator: Integrator) -> Chain<3, 3> {
+    let pos = [Vec2::new(0.0, 0.0), Vec2::new(1.3, 0.1), Vec2::new(0.4, 1.1)];
+    let springs = Springs::closed_loop(&pos, Material::new(50.0, 0.0).unwrap()).unwrap();
+    let settings = Settings { integrator, ..Settings::default() };
+    let mut sys = MassSpring::new(pos, [1.0, 0.5, 2.0], springs, settings).unwrap();
+    sys.set_position(1, Vec2::new(1.6, 0.0)).unwrap();
+    sys.set_velocity(0, Vec2::new(0.3, -0.2)).unwrap();
+    sys.set_velocity(2, Vec2::new(-0.5, 0.4)).unwrap();
+    sys
+}
+
+fn momentum(sys: &Chain<3, 3>) -> Vec2<f64> {
+    sys.velocities().iter().zip(sys.inv_masses()).fold(Vec2::default(), |m, (&v, &w)| m + v * (1.0 / w))
+}
+
+#[test]
+fn momentum_is_conserved_without_external_forces() {
+    for integrator in ALL {
+        let mut sys = free_triangle(integrator);
+        let p0 = momentum(&sys);
+        for _ in 0..600 {
+            sys.step(1.0 / 60.0).unwrap();
+        }
+        let drift = (momentum(&sys) - p0).length();
+        eprintln!("{integrator:?}: momentum drift {drift:.1e}");
+        assert!(drift < 1e-9, "{integrator:?}: {drift}");
+    }
+}
+
+#[test]
+fn energy_gains_stays_or_loses_by_integrator() {
+    // ω·h = 0.2: inside every limit, large enough to see each method's character.
+    for integrator in ALL {
+        let mut sys = oscillator(100.0, 0.0, integrator, 0.1);
+        let e0 = sys.energy();
+        let (mut lo, mut hi) = (e0, e0);
+        for _ in 0..500 {
+            sys.step_once(0.02, ()).unwrap();
+            lo = lo.min(sys.energy());
+            hi = hi.max(sys.energy());
+        }
+        let end = sys.energy() / e0;
+        eprintln!("{integrator:?}: energy ends at {end:.3}× (range {:.3}..{:.3})", lo / e0, hi / e0);
+        match integrator {
+            Integrator::ExplicitEuler => assert!(end > 100.0, "explicit Euler gains: {end}"),
+            Integrator::SymplecticEuler | Integrator::Verlet => {
+                assert!(lo / e0 > 0.85 && hi / e0 < 1.15, "bounded: {lo} {hi}")
+            }
+            Integrator::Rk4 => assert!(end < 1.0 && end > 0.99, "RK4 loses slowly: {end}"),
+            _ => assert!(end < 0.01 && hi <= e0 * (1.0 + 1e-12), "implicit methods lose: {end}"),
+        }
+    }
+}
+
+/// Steps a single unit-mass spring with ω·h = `omega_h` for 2000 steps (no substeps) and
+/// says whether it stayed bounded.
+fn stays_bounded(integrator: Integrator, omega_h: f64) -> bool {
+    let k: f64 = 100.0;
+    let h = omega_h / k.sqrt();
+    let mut sys = oscillator(k, 0.0, integrator, 0.1);
+    sys.settings.bounds = 100.0;
+    for _ in 0..2000 {
+        if sys.step_once(h, ()).is_err() {
+            return false;
+        }
+    }
+    (sys.positions()[1].x - 1.0).abs() < 1.0
+}
+
+#[test]
+fn stability_holds_just_inside_each_limit_and_fails_just_outside() {
+    for (integrator, limit) in [
+        (Integrator::SymplecticEuler, 2.0),
+        (Integrator::Verlet, 2.0),
+        (Integrator::Rk4, 2.0 * 2f64.sqrt()),
+    ] {
+        let documented = integrator.stability_limit::<f64>().unwrap();
+        assert!((documented - limit).abs() < 1e-6);
+        assert!(stays_bounded(integrator, limit * 0.97), "{integrator:?} inside");
+        assert!(!stays_bounded(integrator, limit * 1.03), "{integrator:?} outside");
+    }
+    // Explicit Euler grows at any step without damping.
+    assert!(!stays_bounded(Integrator::ExplicitEuler, 0.3));
+    assert!(!stays_bounded(Integrator::ExplicitEuler, 0.1));
+}
+
+#[test]
+fn implicit_euler_and_xpbd_survive_a_million_at_30_hz() {
+    for integrator in [Integrator::ImplicitEuler { iterations: 16 }, Integrator::Xpbd { substeps: 4 }] {
+        let mut sys = oscillator(1e6, 0.0, integrator, 0.1);
+        sys.settings.gravity = Vec2::new(0.0, -9.81);
+        for _ in 0..300 {
+            let info = sys.step(1.0 / 30.0).unwrap();
+            assert_eq!(info.substeps, 1);
+        }
+        let stretch = sys.positions()[1].length() - 1.0;
+        assert!(stretch.abs() < 1e-3, "{integrator:?}: {stretch}");
+    }
+}
+
+#[test]
+fn divergence_is_reported_and_the_last_good_state_kept() {
+    let mut sys = oscillator(100.0, 0.0, Integrator::SymplecticEuler, 0.1);
+    sys.settings.bounds = 50.0;
+    let h = 2.5 / 10.0; // ω·h = 2.5, outside the limit
+    let mut last_good = sys.clone();
+    let err = loop {
+        match sys.step_once(h, ()) {
+            Ok(()) => last_good = sys.clone(),
+            Err(e) => break e,
+        }
+    };
+    assert_eq!(err, Error::Diverged);
+    assert_eq!(sys.positions(), last_good.positions());
+    assert_eq!(sys.velocities(), last_good.velocities());
+    assert!(sys.positions()[1].length() <= 50.0);
+}
+
+#[test]
+fn substeps_from_stiffness_keep_explicit_methods_stable() {
+    // A chain of 8 with stiff springs and a heavy end; the Gershgorin bound must cover the
+    // true highest frequency, and the substeps it implies must keep every method stable.
+    let pos: [Vec2<f64>; 8] = core::array::from_fn(|i| Vec2::new(i as f64 * 0.5, 0.0));
+    let springs = Springs::<f64, 7>::chain(&pos, Material::new(5000.0, 0.0).unwrap()).unwrap();
+    let mut inv = [2.0; 8];
+    inv[0] = 0.0;
+    inv[7] = 0.25;
+    let sys: Chain<8, 7> = MassSpring::new(pos, inv, springs, Settings::default()).unwrap();
+    let (omega, _) = sys.stiffness_bound();
+    // True highest frequency: eigenvalues of W·K along the chain (longitudinal).
+    let mut a = [[0.0; 7]; 7];
+    for i in 0..7 {
+        let wi = inv[i + 1];
+        let kk = 5000.0;
+        a[i][i] = kk * wi * if i + 1 < 7 { 2.0 } else { 1.0 };
+        if i + 1 < 7 {
+            let off = -kk * (wi * inv[i + 2]).sqrt();
+            a[i][i + 1] = off;
+            a[i + 1][i] = off;
+        }
+    }
+    let true_max = jacobi_eigen(a).0.iter().fold(0.0f64, |m, &l| m.max(l)).sqrt();
+    assert!(omega >= true_max && omega < 2.0 * true_max, "bound {omega} vs true {true_max}");
+    for integrator in [Integrator::SymplecticEuler, Integrator::Verlet, Integrator::Rk4] {
+        let mut s = sys.clone();
+        s.settings.integrator = integrator;
+        s.settings.gravity = Vec2::new(0.0, -9.81);
+        s.settings.bounds = 100.0;
+        for _ in 0..600 {
+            let info = s.step(1.0 / 30.0).unwrap();
+            assert!(info.substeps > 1);
+        }
+        let len = s.positions().windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        assert!(len < 4.0, "{integrator:?} stayed a rope: {len}");
+    }
+}
+
+#[test]
+fn hitches_and_bad_time_steps_are_defined() {
+    let mut sys = oscillator(1e5, 1.0, Integrator::SymplecticEuler, 0.1);
+    sys.settings.gravity = Vec2::new(0.0, -9.81);
+    let before = sys.clone();
+    assert_eq!(sys.step(f64::NAN), Err(Error::InvalidParameter));
+    assert_eq!(sys.step(-0.1), Err(Error::InvalidParameter));
+    assert_eq!(sys.step(f64::INFINITY), Err(Error::InvalidParameter));
+    assert_eq!(sys.positions(), before.positions());
+    let zero = sys.step(0.0).unwrap();
+    assert_eq!((zero.substeps, zero.simulated), (0, 0.0));
+    // A one-second frame: the substep cap turns it into slow motion, not an explosion.
+    let info = sys.step(1.0).unwrap();
+    assert_eq!(info.substeps, dunas::system::MAX_SUBSTEPS);
+    assert!(info.simulated < 1.0 && info.simulated > 0.0);
+    assert!(sys.positions()[1].length() < 1.5);
+}
+
+#[test]
+fn damped_motion_never_reaches_subnormal_velocities() {
+    // A free particle under linear damping decays exponentially: without the flush its
+    // velocity would pass through every subnormal f32 on the way to 0.
+    let pos = [Vec2::new(0.0f32, 0.0), Vec2::new(5.0, 0.0)];
+    let springs = Springs::<f32, 1>::new(Material::new(1.0, 0.0).unwrap());
+    let settings = Settings { damping: 3.0, ..Settings::default() };
+    let mut sys: MassSpring<Vec2<f32>, Line<2>, Springs<f32, 1>> =
+        MassSpring::new(pos, [1.0, 1.0], springs, settings).unwrap();
+    sys.set_velocity(1, Vec2::new(1.0, -1.0)).unwrap();
+    let mut stopped_at = None;
+    for step in 0..5_000 {
+        sys.step(1.0 / 60.0).unwrap();
+        let v = sys.velocities()[1];
+        for c in [v.x, v.y] {
+            assert!(c == 0.0 || c.abs() >= f32::MIN_POSITIVE, "subnormal velocity {c:e} at step {step}");
+        }
+        if v == Vec2::new(0.0, 0.0) && stopped_at.is_none() {
+            stopped_at = Some(step);
+        }
+    }
+    // Each step multiplies v by (1 - 3/60): (0.95)^n reaches the flush threshold ε² ≈ 1.4e-14
+    // at n = ln(ε²)/ln(0.95) ≈ 622.
+    let stopped = stopped_at.expect("velocity flushed to an exact 0");
+    assert!((615..630).contains(&stopped), "{stopped}");
+}
