@@ -2,6 +2,7 @@
 
 use core::ops::{Deref, DerefMut};
 
+use crate::sampler::Sampler;
 use crate::shape::Line;
 use crate::smooth::{self, Smoothing};
 use crate::spring::{Material, Springs};
@@ -87,6 +88,15 @@ impl<P: Point, const N: usize, const CAP: usize> Rope<P, N, CAP> {
     /// [`Error::BufferTooSmall`] when `out` holds fewer than 2 points.
     pub fn sample(&self, smoothing: Smoothing, out: &mut [P]) -> Result<usize, Error> {
         smooth::sample(smoothing, self.system.position_array(), out)
+    }
+
+    /// Samples the particles as one Bézier curve with a chosen sampler, e.g. a
+    /// [`BernsteinTable`](crate::sampler::BernsteinTable) built once for the frame's point count.
+    ///
+    /// # Errors
+    /// As the sampler's [`sample`](Sampler::sample).
+    pub fn sample_with(&self, sampler: &impl Sampler<P, N>, out: &mut [P]) -> Result<usize, Error> {
+        sampler.sample(&self.curve()?, out)
     }
 
     /// The particles as one Bézier curve.

@@ -155,19 +155,24 @@ pub fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K]) -> [[P; 4]; K] {
     spans
 }
 
-/// Walks `n` samples over `spans` uniform spans: yields (span, t) with `t` in `[0, 1]`.
-/// No division per sample for the span index (an incremental remainder).
+/// Walks `n` samples over `spans` uniform spans: yields (sample, span, t) with `t` in
+/// `[0, 1]`. No division per sample for the span index (an incremental remainder); in floats
+/// `t` is the remainder times a precomputed reciprocal (within 1 ulp), in `Q16` the exactly
+/// rounded ratio (a reciprocal rounded to 2⁻¹⁶ would move points by tenths of a pixel).
 #[inline]
 fn for_each_param<S: Scalar>(spans: usize, n: usize, mut f: impl FnMut(usize, usize, S)) {
     let m = n - 1;
+    let inv = S::ratio(1, m as u32);
     let (mut span, mut rem) = (0usize, 0usize);
     for i in 0..n {
         // Parameter u = i·spans/m = span + rem/m; the last sample lands on the end of the
         // last span rather than the start of a span that does not exist.
         let (s, t) = if span >= spans {
             (spans - 1, S::ONE)
-        } else {
+        } else if S::FIXED_POINT {
             (span, S::ratio(rem as u32, m as u32))
+        } else {
+            (span, S::ratio(rem as u32, 1) * inv)
         };
         f(i, s, t);
         rem += spans;
@@ -185,9 +190,7 @@ fn sample_spans<P: Point, const K: usize>(spans: &[[P; 4]; K], out: &mut [P]) ->
         let q0 = b[0].lerp(b[1], t);
         let q1 = b[1].lerp(b[2], t);
         let q2 = b[2].lerp(b[3], t);
-        let r0 = q0.lerp(q1, t);
-        let r1 = q1.lerp(q2, t);
-        out[i] = r0.lerp(r1, t);
+        out[i] = q0.lerp(q1, t).lerp(q1.lerp(q2, t), t);
     });
     out[0] = spans[0][0];
     out[n - 1] = spans[K - 2][3];

@@ -433,8 +433,13 @@ mod tests {
             Err(Error::DuplicateSpring { a: 1, b: 0 })
         );
         let same = [Vec2::new(1.0f32, 1.0), Vec2::new(1.0, 1.0)];
+        let mut fresh = Springs::<f32, 3>::new(mat());
         assert_eq!(
-            s.connect(&same, 0, 1),
+            fresh.connect(&same, 0, 1),
+            Err(Error::ZeroRestLength { a: 0, b: 1 })
+        );
+        assert_eq!(
+            fresh.connect_with_rest(2, 0, 1, f32::NAN),
             Err(Error::ZeroRestLength { a: 0, b: 1 })
         );
         s.connect(&p, 1, 2).unwrap();

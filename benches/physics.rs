@@ -1,0 +1,167 @@
+//! Step cost of every integrator for ropes of 8 and 30 particles and cloths of 8×8 and
+//! 20×20, the cost of a whole rope frame (step + 64-point curve), and the state sizes.
+//!
+//! Run: `cargo bench --bench physics`. The sizes are printed first.
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use dunas::sampler::BernsteinTable;
+use dunas::smooth::Smoothing;
+use dunas::spring::Material;
+use dunas::system::Settings;
+use dunas::{Cloth, Integrator, Rope, Vec2, Vec3};
+
+const INTEGRATORS: [(&str, Integrator); 6] = [
+    ("explicit_euler", Integrator::ExplicitEuler),
+    ("symplectic_euler", Integrator::SymplecticEuler),
+    ("verlet", Integrator::Verlet),
+    ("rk4", Integrator::Rk4),
+    (
+        "implicit_euler_cg8",
+        Integrator::ImplicitEuler { iterations: 8 },
+    ),
+    ("xpbd_4", Integrator::Xpbd { substeps: 4 }),
+];
+
+/// A swinging rope of `N` particles, 70 px long, the same material and mass at any `N`
+/// (stiffness per spring scales with `N - 1` so the whole rope stretches alike).
+fn rope<const N: usize, const CAP: usize>(integrator: Integrator) -> Rope<Vec2<f32>, N, CAP> {
+    let settings = Settings {
+        integrator,
+        gravity: Vec2::new(0.0, -200.0),
+        damping: 0.1,
+        ..Settings::default()
+    };
+    let k = 400.0 * (N - 1) as f32 / 7.0;
+    let mut r = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        Material::new(k, 2.0).unwrap(),
+        settings,
+    )
+    .unwrap();
+    r.set_inv_mass(N - 1, 0.25).unwrap();
+    for _ in 0..20 {
+        r.step(1.0 / 60.0).unwrap();
+    }
+    r
+}
+
+fn cloth<const U: usize, const V: usize>(integrator: Integrator) -> Cloth<Vec3<f32>, U, V> {
+    let settings = Settings {
+        integrator,
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping: 0.2,
+        ..Settings::default()
+    };
+    let m = Material::new(300.0, 0.5).unwrap();
+    let mut c = Cloth::rectangle(
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, -2.0, 0.0),
+        1.0,
+        [m, m, m],
+        settings,
+    )
+    .unwrap();
+    c.pin_row(0).unwrap();
+    for _ in 0..20 {
+        c.step(1.0 / 60.0).unwrap();
+    }
+    c
+}
+
+/// Times `f` on a fresh copy of `state` each iteration (the copy is not timed), so that an
+/// unstable method or a rope coming to rest does not change what is measured.
+fn bench_on<T: Clone, R>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    state: &T,
+    mut f: impl FnMut(&mut T) -> R,
+) {
+    g.bench_function(name, |b| {
+        b.iter_batched_ref(|| state.clone(), |s| f(black_box(s)), BatchSize::SmallInput)
+    });
+}
+
+/// One fixed-size step (`step_once`, 1/240 s): the integrator's own cost, without the
+/// substeps a stiffness would add.
+fn steps(c: &mut Criterion) {
+    let h = 1.0 / 240.0;
+    for (name, integrator) in INTEGRATORS {
+        let mut g = c.benchmark_group(format!("step/{name}"));
+        bench_on(&mut g, "rope8", &rope::<8, 7>(integrator), |r| {
+            r.step_once(h, ())
+        });
+        bench_on(&mut g, "rope30", &rope::<30, 29>(integrator), |r| {
+            r.step_once(h, ())
+        });
+        bench_on(&mut g, "cloth8x8", &cloth::<8, 8>(integrator), |r| {
+            r.step_once(h, ())
+        });
+        bench_on(&mut g, "cloth20x20", &cloth::<20, 20>(integrator), |r| {
+            r.step_once(h, ())
+        });
+        g.finish();
+    }
+}
+
+/// A whole rope frame: one symplectic Euler step of 1/240 s and a 64-point curve.
+fn frames(c: &mut Criterion) {
+    let h = 1.0 / 240.0;
+    let mut g = c.benchmark_group("frame");
+    let mut out = [Vec2::<f32>::default(); 64];
+    let r8 = rope::<8, 7>(Integrator::SymplecticEuler);
+    bench_on(&mut g, "rope8_bspline64", &r8, |r| {
+        r.step_once(h, ()).unwrap();
+        r.sample(Smoothing::BSpline, &mut out).unwrap()
+    });
+    let table = BernsteinTable::<f32, 8, 64>::new();
+    bench_on(&mut g, "rope8_bezier_table64", &r8, |r| {
+        r.step_once(h, ()).unwrap();
+        r.sample_with(&table, &mut out).unwrap()
+    });
+    bench_on(&mut g, "rope8_bezier_decasteljau64", &r8, |r| {
+        r.step_once(h, ()).unwrap();
+        r.sample(Smoothing::Bezier, &mut out).unwrap()
+    });
+    let r30 = rope::<30, 29>(Integrator::SymplecticEuler);
+    bench_on(&mut g, "rope30_polyline64", &r30, |r| {
+        r.step_once(h, ()).unwrap();
+        r.sample(Smoothing::Polyline, &mut out).unwrap()
+    });
+    g.finish();
+}
+
+fn sizes(_: &mut Criterion) {
+    use core::mem::size_of;
+    println!(
+        "size_of Rope<Vec2<f32>, 8, 7>      = {} B",
+        size_of::<Rope<Vec2<f32>, 8, 7>>()
+    );
+    println!(
+        "size_of Rope<Vec2<f32>, 30, 29>    = {} B",
+        size_of::<Rope<Vec2<f32>, 30, 29>>()
+    );
+    println!(
+        "size_of Cloth<Vec3<f32>, 8, 8>     = {} B",
+        size_of::<Cloth<Vec3<f32>, 8, 8>>()
+    );
+    println!(
+        "size_of Cloth<Vec3<f32>, 20, 20>   = {} B",
+        size_of::<Cloth<Vec3<f32>, 20, 20>>()
+    );
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_millis(800))
+        .sample_size(30);
+    targets = sizes, steps, frames
+}
+criterion_main!(benches);

@@ -1,0 +1,336 @@
+//! Ropes and cloth end to end: number formats against f64, fixed-point overflow, drawn-length
+//! calibration, the thesis's other topologies, and the game-loop clock.
+#![cfg(any(feature = "std", feature = "libm"))]
+
+use dunas::smooth::Smoothing;
+use dunas::spring::{Material, Springs};
+use dunas::system::Settings;
+use dunas::{Cloth, Error, FixedTimestep, Integrator, Point, Rope, Scalar, Vec2, Vec3};
+
+/// The catapult rope of the thesis: 8 particles from a pin, a heavy weight at the end, in
+/// pixel units (y up), released horizontally.
+fn catapult<S: Scalar>(damping: f64) -> Rope<Vec2<S>, 8, 7> {
+    let settings = Settings {
+        gravity: Vec2::from_f64(0.0, -200.0),
+        damping: S::from_f64(damping),
+        ..Settings::default()
+    };
+    let material = Material::new(S::from_f64(400.0), S::from_f64(2.0)).unwrap();
+    let mut rope = Rope::new(
+        Vec2::from_f64(0.0, 0.0),
+        Vec2::from_f64(70.0, 0.0),
+        S::from_f64(7.0),
+        material,
+        settings,
+    )
+    .unwrap();
+    rope.set_inv_mass(7, S::from_f64(0.25)).unwrap(); // the penguin
+    rope
+}
+
+fn max_distance<S: Scalar, T: Scalar>(a: &[Vec2<S>], b: &[Vec2<T>]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (p.x.to_f64() - q.x.to_f64()).hypot(p.y.to_f64() - q.y.to_f64()))
+        .fold(0.0, f64::max)
+}
+
+fn run<S: Scalar>(rope: &mut Rope<Vec2<S>, 8, 7>, steps: usize) {
+    for _ in 0..steps {
+        rope.step(S::from_f64(1.0 / 60.0)).unwrap();
+    }
+}
+
+#[test]
+fn f32_follows_f64_while_swinging_and_at_rest() {
+    let (mut a, mut b) = (catapult::<f64>(0.0), catapult::<f32>(0.0));
+    run(&mut a, 60);
+    run(&mut b, 60);
+    let swing = max_distance(a.positions(), b.positions());
+    let (mut a, mut b) = (catapult::<f64>(4.0), catapult::<f32>(4.0));
+    run(&mut a, 600);
+    run(&mut b, 600);
+    let rest = max_distance(a.positions(), b.positions());
+    eprintln!("f32 vs f64: {swing:.2e} px after 1 s of swing, {rest:.2e} px at rest");
+    assert!(swing < 0.01 && rest < 0.01, "{swing} {rest}");
+}
+
+#[cfg(feature = "fixed")]
+mod q16 {
+    use super::*;
+    use dunas::Q16;
+
+    #[test]
+    fn q16_rope_runs_end_to_end_and_tracks_f64() {
+        let (mut a, mut b) = (catapult::<f64>(0.0), catapult::<Q16>(0.0));
+        run(&mut a, 60);
+        run(&mut b, 60);
+        let swing = max_distance(a.positions(), b.positions());
+        let (mut a, mut b) = (catapult::<f64>(4.0), catapult::<Q16>(4.0));
+        run(&mut a, 600);
+        run(&mut b, 600);
+        let rest = max_distance(a.positions(), b.positions());
+        eprintln!("Q16 vs f64: {swing:.2e} px after 1 s of swing, {rest:.2e} px at rest");
+        assert!(swing < 0.5 && rest < 0.1, "{swing} {rest}");
+        let mut out = [Vec2::<Q16>::default(); 33];
+        assert_eq!(b.sample(Smoothing::Bezier, &mut out), Ok(33));
+        assert_eq!(out[0], b.positions()[0]);
+    }
+
+    #[test]
+    fn q16_rejects_coordinates_beyond_its_safe_range() {
+        let m = Material::new(Q16::from_f64(10.0), Q16::ZERO).unwrap();
+        let far = Rope::<Vec2<Q16>, 4, 3>::new(
+            Vec2::from_f64(0.0, 0.0),
+            Vec2::from_f64(20_000.0, 0.0),
+            Q16::ONE,
+            m,
+            Settings::default(),
+        );
+        assert_eq!(far.err(), Some(Error::OutOfRange));
+        let mut rope = catapult::<Q16>(0.0);
+        assert_eq!(
+            rope.set_position(0, Vec2::from_f64(30_000.0, 0.0)),
+            Err(Error::OutOfRange)
+        );
+    }
+
+    #[test]
+    fn q16_overflow_from_huge_stiffness_is_reported_not_wrapped() {
+        // k near the top of Q16's range: a stretch of 2 px saturates the force.
+        let m = Material::new(Q16::from_f64(30_000.0), Q16::ZERO).unwrap();
+        let settings = Settings {
+            bounds: Q16::from_f64(1000.0),
+            ..Settings::default()
+        };
+        let mut rope = Rope::<Vec2<Q16>, 8, 7>::new(
+            Vec2::from_f64(0.0, 0.0),
+            Vec2::from_f64(70.0, 0.0),
+            Q16::ONE,
+            m,
+            settings,
+        )
+        .unwrap();
+        rope.set_position(7, Vec2::from_f64(200.0, 50.0)).unwrap(); // a 130 px stretch
+        let mut outcomes = (0, 0);
+        for _ in 0..120 {
+            let before = rope.clone();
+            match rope.step(Q16::from_f64(1.0 / 60.0)) {
+                Ok(_) => outcomes.0 += 1,
+                Err(e) => {
+                    assert_eq!(e, Error::Diverged);
+                    assert_eq!(rope.positions(), before.positions(), "state kept");
+                    outcomes.1 += 1;
+                }
+            }
+            for p in rope.positions() {
+                assert!(
+                    p.is_finite()
+                        && p.x.abs() <= Q16::from_f64(1000.0)
+                        && p.y.abs() <= Q16::from_f64(1000.0)
+                );
+            }
+        }
+        // A blow that would saturate the velocity is refused up front...
+        let v7 = rope.velocities()[7];
+        assert_eq!(
+            rope.apply_impulse(7, Vec2::from_f64(16_000.0, 0.0)),
+            Err(Error::NonFinite)
+        );
+        assert_eq!(rope.velocities()[7], v7);
+        // ...and a legal but extreme one throws the rope out of bounds: refused, state kept.
+        rope.set_velocity(7, Vec2::from_f64(16_000.0, 0.0)).unwrap();
+        let diverged = (0..20).any(|_| {
+            let before = rope.clone();
+            let r = rope.step(Q16::from_f64(1.0 / 60.0));
+            if r.is_err() {
+                assert_eq!(r.err(), Some(Error::Diverged));
+                assert_eq!(rope.positions(), before.positions());
+            }
+            r.is_err()
+        });
+        assert!(diverged);
+        eprintln!(
+            "huge stiffness in Q16: {} steps ok, {} refused as divergent",
+            outcomes.0, outcomes.1
+        );
+    }
+
+    #[test]
+    fn q16_coincident_particles_give_no_force_and_no_garbage() {
+        let mut rope = catapult::<Q16>(0.0);
+        let p2 = rope.positions()[2];
+        rope.set_position(3, p2).unwrap();
+        rope.set_position(4, p2).unwrap();
+        run(&mut rope, 30);
+        assert!(rope.positions().iter().all(|p| p.in_safe_range()));
+    }
+}
+
+/// A rope pinned at both ends, sagging: the drawn curve is shorter than the spring polygon.
+fn sagging(smoothing: Smoothing) -> (Rope<Vec2<f64>, 8, 7>, f64) {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 4.0,
+        integrator: Integrator::Rk4,
+        ..Settings::default()
+    };
+    let mut rope = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(7.0, 0.0),
+        1.0,
+        Material::new(2000.0, 1.0).unwrap(),
+        settings,
+    )
+    .unwrap();
+    rope.set_inv_mass(7, 0.0).unwrap();
+    rope.set_position(7, Vec2::new(5.0, 0.0)).unwrap();
+    for _ in 0..300 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let before = rope.drawn_length(smoothing, 1e-6).unwrap();
+    (rope, before)
+}
+
+#[test]
+fn calibration_makes_the_drawn_curve_the_intended_length() {
+    for smoothing in [Smoothing::Bezier, Smoothing::BSpline, Smoothing::CatmullRom] {
+        let (mut rope, before) = sagging(smoothing);
+        let target = 7.0;
+        let residual = rope
+            .calibrate_length(smoothing, target, 1.0 / 60.0, 200)
+            .unwrap();
+        let after = rope.drawn_length(smoothing, 1e-6).unwrap();
+        eprintln!(
+            "{smoothing:?}: drawn {before:.4} before, {after:.4} after calibration (residual {residual:.1e})"
+        );
+        assert!(
+            (before - target).abs() / target > 5.0 * residual,
+            "calibration had work to do"
+        );
+        assert!(residual < 1e-2 && ((after - target) / target).abs() < 1e-2);
+    }
+    let (mut rope, _) = sagging(Smoothing::Bezier);
+    assert_eq!(
+        rope.calibrate_length(Smoothing::Bezier, -1.0, 0.1, 1),
+        Err(Error::InvalidParameter)
+    );
+}
+
+#[test]
+fn hub_and_loop_ropes_simulate() {
+    let pos: [Vec2<f64>; 8] = core::array::from_fn(|i| Vec2::new(i as f64, 0.0));
+    let mut inv = [1.0; 8];
+    inv[0] = 0.0;
+    let material = Material::new(300.0, 1.0).unwrap();
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 0.5,
+        ..Settings::default()
+    };
+    // Merlin's rope: the hub springs hold every particle at its distance from the holder.
+    let hub = Springs::<f64, 13>::hub(&pos, material).unwrap();
+    let mut merlin = Rope::from_parts(pos, inv, hub, settings).unwrap();
+    let chain = Springs::<f64, 13>::chain(&pos, material).unwrap();
+    let mut plain = Rope::from_parts(pos, inv, chain, settings).unwrap();
+    for _ in 0..240 {
+        merlin.step(1.0 / 60.0).unwrap();
+        plain.step(1.0 / 60.0).unwrap();
+    }
+    let reach = |r: &Rope<Vec2<f64>, 8, 13>| r.positions()[7].length();
+    assert!(
+        reach(&merlin) > 6.5 && reach(&plain) > 6.5,
+        "both hang near full length"
+    );
+    // The hub makes it stiffer against bending: its middle sags less.
+    assert!(merlin.positions()[4].y > plain.positions()[4].y);
+
+    let ring: [Vec2<f64>; 8] = core::array::from_fn(|i| {
+        let a = i as f64 * std::f64::consts::TAU / 8.0;
+        Vec2::new(a.cos(), a.sin())
+    });
+    let springs = Springs::<f64, 16>::surface_line(&ring, 2, material).unwrap();
+    let mut looped = Springs::<f64, 16>::closed_loop(&ring, material).unwrap();
+    looped.connect(&ring, 0, 4).unwrap();
+    assert_eq!(springs.as_slice().len(), 13);
+    let mut ring_rope = Rope::from_parts(ring, [1.0; 8], looped, Settings::default()).unwrap();
+    ring_rope.apply_impulse(2, Vec2::new(0.5, 0.0)).unwrap();
+    for _ in 0..120 {
+        ring_rope.step(1.0 / 60.0).unwrap();
+    }
+    let mut out = [Vec2::default(); 40];
+    assert_eq!(ring_rope.sample(Smoothing::CatmullRom, &mut out), Ok(40));
+}
+
+#[test]
+fn cloth_hangs_in_the_wind_and_samples_smoothly() {
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping: 0.3,
+        ..Settings::default()
+    };
+    let m = Material::new(500.0, 0.5).unwrap();
+    let mut sail: Cloth<Vec3<f32>, 8, 8> = Cloth::rectangle(
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, -2.0, 0.0),
+        1.0,
+        [m, m, m],
+        settings,
+    )
+    .unwrap();
+    sail.pin_row(0).unwrap();
+    let mut wind = dunas::force::Wind::still(0.05f32);
+    wind.velocity = Vec3::new(0.0, 0.0, 3.0);
+    for _ in 0..300 {
+        sail.step_with(1.0 / 60.0, &mut wind).unwrap();
+    }
+    // The free edge blows downwind; the pinned edge stays.
+    assert!(sail.positions()[63].z > 0.2);
+    assert_eq!(sail.positions()[0], Vec3::new(0.0, 0.0, 0.0));
+    let mut pos = [Vec3::default(); 256];
+    let mut nor = [Vec3::default(); 256];
+    assert_eq!(sail.sample(16, 16, &mut pos, &mut nor), Ok(256));
+    for n in &nor {
+        assert!((n.length() - 1.0).abs() < 1e-4);
+    }
+    assert_eq!(
+        sail.pin_row(8),
+        Err(Error::IndexOutOfRange { index: 8, len: 8 })
+    );
+}
+
+#[test]
+fn fixed_timestep_clamps_hitches_and_ignores_bad_frames() {
+    // Steps of 1/64 s keep the sums exact in binary.
+    let mut clock = FixedTimestep::new(1.0 / 64.0, 5.0 / 64.0).unwrap();
+    assert_eq!(clock.advance(2.5 / 64.0), 2);
+    assert_eq!(clock.alpha(), 0.5);
+    assert_eq!(clock.advance(0.5 / 64.0), 1);
+    assert_eq!(clock.advance(1.0), 5); // a 1 s hitch runs at most 5 steps
+    for bad in [f64::NAN, -1.0, f64::INFINITY, 0.0] {
+        assert_eq!(clock.advance(bad), 0);
+    }
+    assert_eq!(
+        FixedTimestep::new(0.0f64, 1.0),
+        Err(Error::InvalidParameter)
+    );
+    assert_eq!(
+        FixedTimestep::new(0.1f64, 0.05),
+        Err(Error::InvalidParameter)
+    );
+    assert_eq!(
+        FixedTimestep::new(0.1f64, f64::NAN),
+        Err(Error::InvalidParameter)
+    );
+}
+
+#[test]
+fn state_sizes_meet_the_budgets() {
+    use core::mem::size_of;
+    let rope = size_of::<Rope<Vec2<f32>, 8, 7>>();
+    let cloth = size_of::<Cloth<Vec3<f32>, 8, 8>>();
+    eprintln!("Rope<Vec2<f32>, 8, 7>: {rope} B, Cloth<Vec3<f32>, 8, 8>: {cloth} B");
+    assert!(rope <= 256, "{rope}");
+    assert!(cloth <= 4096, "{cloth}");
+}
