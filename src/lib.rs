@@ -73,6 +73,7 @@ compile_error!(
 mod math;
 
 mod aabb;
+pub mod ascii;
 mod cloth;
 pub mod curve;
 mod error;

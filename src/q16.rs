@@ -233,6 +233,11 @@ impl Scalar for Q16 {
     }
 
     #[inline]
+    fn floor_i32(self) -> i32 {
+        self.to_bits() >> 16
+    }
+
+    #[inline]
     fn ceil_count(self, max: usize) -> usize {
         let bits = self.to_bits();
         if bits <= 0 {
@@ -315,5 +320,7 @@ mod tests {
         assert_eq!(q(2.0).ceil_count(10), 2);
         assert_eq!(q(-2.0).ceil_count(10), 0);
         assert_eq!(Q16::from_i16(-16383).to_f64(), -16383.0);
+        assert_eq!(q(2.5).floor_i32(), 2);
+        assert_eq!(q(-2.5).floor_i32(), -3);
     }
 }

@@ -82,6 +82,8 @@ pub trait Scalar:
     fn norm(xs: &[Self]) -> Self;
     /// `ceil(self)` as a count, clamped to `0..=max`; NaN gives `max`.
     fn ceil_count(self, max: usize) -> usize;
+    /// `floor(self)` as an `i32`, saturating at the `i32` range; NaN gives 0.
+    fn floor_i32(self) -> i32;
 
     /// The larger of two values (`other` if they are unordered).
     #[inline]
@@ -170,6 +172,12 @@ macro_rules! impl_float {
                 let n = self as usize; // truncation, self is in 0..max
                 if (n as $t) < self { n + 1 } else { n }
             }
+            #[inline]
+            fn floor_i32(self) -> i32 {
+                // `as` saturates and maps NaN to 0; step down for negative non-integers.
+                let t = self as i32;
+                if (t as $t) > self { t.saturating_sub(1) } else { t }
+            }
         }
     };
 }
@@ -230,6 +238,16 @@ mod tests {
         assert_eq!(f32::NAN.ceil_count(100), 100);
         assert_eq!(f64::INFINITY.ceil_count(100), 100);
         assert_eq!(1e30f32.ceil_count(100), 100);
+    }
+
+    #[test]
+    fn floor_i32_rounds_down_and_saturates() {
+        assert_eq!(2.7f32.floor_i32(), 2);
+        assert_eq!((-2.2f64).floor_i32(), -3);
+        assert_eq!((-2.0f64).floor_i32(), -2);
+        assert_eq!(f32::NAN.floor_i32(), 0);
+        assert_eq!(1e30f32.floor_i32(), i32::MAX);
+        assert_eq!((-1e30f64).floor_i32(), i32::MIN);
     }
 
     #[test]
