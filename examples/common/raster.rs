@@ -1,0 +1,164 @@
+//! A small software rasteriser for the host examples: lines, z-buffered Gouraud triangles, a
+//! simple camera, and binary PPM (P6) output.
+#![allow(dead_code)]
+
+use std::io;
+use std::path::Path;
+
+/// An RGB image with a depth buffer.
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub rgb: Vec<u8>,
+    depth: Vec<f32>,
+}
+
+impl Image {
+    pub fn new(width: usize, height: usize, background: [u8; 3]) -> Image {
+        let mut rgb = Vec::with_capacity(width * height * 3);
+        for _ in 0..width * height {
+            rgb.extend_from_slice(&background);
+        }
+        Image {
+            width,
+            height,
+            rgb,
+            depth: vec![f32::INFINITY; width * height],
+        }
+    }
+
+    pub fn pixel(&self, x: usize, y: usize) -> [u8; 3] {
+        let i = 3 * (y * self.width + x);
+        [self.rgb[i], self.rgb[i + 1], self.rgb[i + 2]]
+    }
+
+    fn put(&mut self, x: i64, y: i64, z: f32, color: [u8; 3]) {
+        if x < 0 || y < 0 || x as usize >= self.width || y as usize >= self.height {
+            return;
+        }
+        let k = y as usize * self.width + x as usize;
+        if z <= self.depth[k] {
+            self.depth[k] = z;
+            self.rgb[3 * k..3 * k + 3].copy_from_slice(&color);
+        }
+    }
+
+    /// A line drawn over everything (no depth test), clipped to the image.
+    pub fn line(&mut self, a: [f32; 2], b: [f32; 2], color: [u8; 3]) {
+        let steps = (b[0] - a[0])
+            .abs()
+            .max((b[1] - a[1]).abs())
+            .ceil()
+            .min(4096.0) as i64;
+        for s in 0..=steps {
+            let t = if steps == 0 {
+                0.0
+            } else {
+                s as f32 / steps as f32
+            };
+            let (x, y) = (a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t);
+            self.put(x.round() as i64, y.round() as i64, f32::NEG_INFINITY, color);
+        }
+    }
+
+    /// A triangle with per-vertex colours, depth-tested (smaller `z` is nearer).
+    pub fn triangle(&mut self, v: [[f32; 3]; 3], colors: [[f32; 3]; 3]) {
+        let area =
+            (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[2][0] - v[0][0]) * (v[1][1] - v[0][1]);
+        if area.abs() < 1e-12 || !area.is_finite() {
+            return;
+        }
+        let min_x = v
+            .iter()
+            .map(|p| p[0])
+            .fold(f32::INFINITY, f32::min)
+            .floor()
+            .max(0.0) as i64;
+        let max_x = v
+            .iter()
+            .map(|p| p[0])
+            .fold(f32::NEG_INFINITY, f32::max)
+            .ceil()
+            .min(self.width as f32 - 1.0) as i64;
+        let min_y = v
+            .iter()
+            .map(|p| p[1])
+            .fold(f32::INFINITY, f32::min)
+            .floor()
+            .max(0.0) as i64;
+        let max_y = v
+            .iter()
+            .map(|p| p[1])
+            .fold(f32::NEG_INFINITY, f32::max)
+            .ceil()
+            .min(self.height as f32 - 1.0) as i64;
+        for y in min_y..=max_y {
+            for x in min_x..=max_x {
+                let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
+                let w0 = ((v[1][0] - px) * (v[2][1] - py) - (v[2][0] - px) * (v[1][1] - py)) / area;
+                let w1 = ((v[2][0] - px) * (v[0][1] - py) - (v[0][0] - px) * (v[2][1] - py)) / area;
+                let w2 = 1.0 - w0 - w1;
+                if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                    continue;
+                }
+                let z = w0 * v[0][2] + w1 * v[1][2] + w2 * v[2][2];
+                let c = |k: usize| {
+                    (w0 * colors[0][k] + w1 * colors[1][k] + w2 * colors[2][k]).clamp(0.0, 255.0)
+                        as u8
+                };
+                self.put(x, y, z, [c(0), c(1), c(2)]);
+            }
+        }
+    }
+
+    /// The image as a binary PPM (P6).
+    pub fn to_ppm(&self) -> Vec<u8> {
+        let mut out = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
+        out.extend_from_slice(&self.rgb);
+        out
+    }
+
+    pub fn write_ppm(&self, path: &Path) -> io::Result<()> {
+        std::fs::write(path, self.to_ppm())
+    }
+}
+
+/// An orthographic camera turned by `yaw` about the vertical axis and tilted by `pitch`,
+/// mapping world units to pixels with `scale` around the image point `center`.
+pub struct Camera {
+    pub yaw: f32,
+    pub pitch: f32,
+    pub scale: f32,
+    pub center: [f32; 2],
+}
+
+impl Camera {
+    /// Screen `[x, y, depth]` of a world point (y up in the world, down on screen).
+    pub fn project(&self, p: [f32; 3]) -> [f32; 3] {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        let x = cy * p[0] + sy * p[2];
+        let z = -sy * p[0] + cy * p[2];
+        let y = cp * p[1] - sp * z;
+        let depth = sp * p[1] + cp * z;
+        [
+            self.center[0] + self.scale * x,
+            self.center[1] - self.scale * y,
+            depth,
+        ]
+    }
+
+    /// The direction from the scene towards the camera, in world space.
+    pub fn towards_viewer(&self) -> [f32; 3] {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        [sy * cp, -sp, -cy * cp]
+    }
+}
+
+/// Lambert shading of a two-sided surface: ambient plus diffuse from `light` (unit vector).
+pub fn lambert(normal: [f32; 3], light: [f32; 3], base: [f32; 3]) -> [f32; 3] {
+    let d = (normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2]).abs();
+    let k = 0.25 + 0.75 * d;
+    [base[0] * k, base[1] * k, base[2] * k]
+}
