@@ -73,6 +73,67 @@ pub fn sample<P: Point, const K: usize>(
     }
 }
 
+/// Samples the *closed* curve through a ring of particles (a loop topology): the spans wrap
+/// from the last particle back to the first with no seam, `K` spans in all. The first sample
+/// is repeated as the last, so a polyline through `out[..n]` closes.
+///
+/// [`Smoothing::BSpline`] is C² all round, [`Smoothing::CatmullRom`] passes through every
+/// particle, [`Smoothing::Polyline`] joins them straight. A single Bézier curve cannot close
+/// smoothly, so [`Smoothing::Bezier`] is an error here.
+///
+/// ```
+/// use dunas::{Vec2, smooth::{self, Smoothing}};
+/// let square = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+/// let mut out = [Vec2::default(); 17];
+/// assert_eq!(smooth::sample_closed(Smoothing::CatmullRom, &square, &mut out), Ok(17));
+/// assert_eq!(out[0], out[16]);
+/// assert_eq!(out[4], square[1]); // 4 samples per span: particle k at sample 4k
+/// # Ok::<(), dunas::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`sample`]; [`Error::InvalidParameter`] for [`Smoothing::Bezier`].
+pub fn sample_closed<P: Point, const K: usize>(
+    method: Smoothing,
+    particles: &[P; K],
+    out: &mut [P],
+) -> Result<usize, Error> {
+    const { assert!(K >= 3, "a closed loop needs at least 3 particles") };
+    check_points(particles)?;
+    if out.len() < 2 {
+        return Err(Error::BufferTooSmall {
+            needed: 2,
+            got: out.len(),
+        });
+    }
+    let at = |i: usize| particles[i % K];
+    let sixth = P::Scalar::ratio(1, 6);
+    let mut spans = [[particles[0]; 4]; K];
+    for (i, span) in spans.iter_mut().enumerate() {
+        let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
+        *span = match method {
+            Smoothing::Bezier => return Err(Error::InvalidParameter),
+            Smoothing::Polyline => [a, a, b, b],
+            Smoothing::CatmullRom => [a, a + (b - prev) * sixth, b - (next - a) * sixth, b],
+            Smoothing::BSpline => {
+                let third = P::Scalar::ratio(1, 3);
+                let knot = |p: P, q: P, r: P| q + (p - q) * sixth + (r - q) * sixth;
+                let step = b - a;
+                [
+                    knot(prev, a, b),
+                    a + step * third,
+                    b - step * third,
+                    knot(a, b, next),
+                ]
+            }
+        };
+    }
+    let n = out.len().min(crate::sampler::MAX_SAMPLES);
+    for_each_param::<P::Scalar>(K, n, |i, s, t| out[i] = eval_cubic(&spans[s], t));
+    out[n - 1] = out[0];
+    Ok(n)
+}
+
 /// Length of the curve that `method` makes of `particles`, within `accuracy` (see
 /// [`Bezier::arclen`]); the polyline's length is exact.
 ///
@@ -183,15 +244,18 @@ fn for_each_param<S: Scalar>(spans: usize, n: usize, mut f: impl FnMut(usize, us
     }
 }
 
+/// A cubic span at `t` by de Casteljau (6 lerps).
+#[inline]
+fn eval_cubic<P: Point>(b: &[P; 4], t: P::Scalar) -> P {
+    let q0 = b[0].lerp(b[1], t);
+    let q1 = b[1].lerp(b[2], t);
+    let q2 = b[2].lerp(b[3], t);
+    q0.lerp(q1, t).lerp(q1.lerp(q2, t), t)
+}
+
 fn sample_spans<P: Point, const K: usize>(spans: &[[P; 4]; K], out: &mut [P]) -> usize {
     let n = out.len().min(crate::sampler::MAX_SAMPLES);
-    for_each_param::<P::Scalar>(K - 1, n, |i, s, t| {
-        let b = &spans[s];
-        let q0 = b[0].lerp(b[1], t);
-        let q1 = b[1].lerp(b[2], t);
-        let q2 = b[2].lerp(b[3], t);
-        out[i] = q0.lerp(q1, t).lerp(q1.lerp(q2, t), t);
-    });
+    for_each_param::<P::Scalar>(K - 1, n, |i, s, t| out[i] = eval_cubic(&spans[s], t));
     out[0] = spans[0][0];
     out[n - 1] = spans[K - 2][3];
     n
@@ -265,6 +329,34 @@ mod tests {
             let (a, b) = (s[i], s[i + 1]);
             assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);
         }
+    }
+
+    #[test]
+    fn closed_loops_have_no_seam() {
+        let ring: [Vec2<f64>; 6] = core::array::from_fn(|i| {
+            let a = i as f64 * core::f64::consts::TAU / 6.0;
+            Vec2::new(a.cos(), a.sin())
+        });
+        let mut out = [Vec2::default(); 6 * 8 + 1];
+        for m in [Smoothing::BSpline, Smoothing::CatmullRom] {
+            sample_closed(m, &ring, &mut out).unwrap();
+            // The same distance from the centre all round, and rotating the ring only
+            // rotates the curve: the seam at particle 0 is like every other joint.
+            let r0 = out[0].length();
+            for o in &out {
+                assert!((o.length() - r0).abs() < 0.05, "{m:?}");
+            }
+            let rotated: [Vec2<f64>; 6] = core::array::from_fn(|i| ring[(i + 1) % 6]);
+            let mut out2 = [Vec2::default(); 6 * 8 + 1];
+            sample_closed(m, &rotated, &mut out2).unwrap();
+            for k in 0..out.len() - 8 {
+                assert!((out[k + 8] - out2[k]).length() < 1e-12, "{m:?} {k}");
+            }
+        }
+        assert_eq!(
+            sample_closed(Smoothing::Bezier, &ring, &mut out),
+            Err(Error::InvalidParameter)
+        );
     }
 
     #[test]
