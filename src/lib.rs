@@ -51,6 +51,7 @@
 //! | `libm` | no | float math without `std` (exact square roots from `libm`) |
 //! | `fixed` | no | the [`Q16`] Q16.16 format, for chips without an FPU |
 //! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (about 6% and 3.4% worst case) |
+//! | `xml` | no | loading the thesis's scene and physics XML files (`xml` module; needs `std`) |
 //!
 //! `f32` and `f64` need `std` or `libm`; a build with neither and without `fixed` stops
 //! with a `compile_error!`. A `fixed`-only build has no floats at all.
@@ -92,6 +93,8 @@ pub mod smooth;
 pub mod spring;
 pub mod system;
 mod timestep;
+#[cfg(feature = "xml")]
+pub mod xml;
 
 pub use aabb::Aabb;
 pub use cloth::Cloth;
