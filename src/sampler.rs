@@ -132,7 +132,7 @@ fn power_coefficients<S: Scalar, const N: usize>(lane: &[S; N]) -> [S; N] {
         for i in 0..N - j {
             diff[i] = diff[i + 1] - diff[i];
         }
-        binom = binom * (N - j) / j;
+        binom = binom.saturating_mul(N - j) / j;
         a[j] = diff[0] * degree_scalar::<S>(binom);
     }
     a

@@ -53,12 +53,12 @@ pub trait Scalar:
     /// Square root; negative inputs give 0. Exact to the format's rounding.
     fn sqrt(self) -> Self;
     /// Square root that may trade accuracy for speed: micromath's approximation for `f32`
-    /// when the `micromath` feature is on (about 6% worst case), otherwise [`sqrt`](Self::sqrt).
+    /// when the `micromath` feature is on (at most 6.1%, measured over 1e-3..1e3), otherwise [`sqrt`](Self::sqrt).
     #[inline]
     fn approx_sqrt(self) -> Self {
         self.sqrt()
     }
-    /// `1 / sqrt(self)`, possibly approximate: micromath's (about 3.4% worst case) for `f32`
+    /// `1 / sqrt(self)`, possibly approximate: micromath's (at most 3.5%, measured over 1e-3..1e3) for `f32`
     /// with the `micromath` feature. Non-positive input gives 0.
     #[inline]
     fn approx_inv_sqrt(self) -> Self {
@@ -263,6 +263,32 @@ mod tests {
         let n = <f32 as Scalar>::norm(&[r, r, r]);
         assert!(n.is_finite());
         assert!((n / r - 3f32.sqrt()).abs() < 1e-6);
+    }
+
+    /// The documented worst cases of the approximate roots: exact without `micromath`, within
+    /// 6.1% (sqrt) and 3.5% (inverse sqrt) with it, over six decades.
+    #[test]
+    fn approximate_roots_hold_their_documented_error() {
+        let (mut worst_sqrt, mut worst_inv) = (0.0f64, 0.0f64);
+        let mut x = 1e-3f32;
+        while x < 1e3 {
+            let exact = (x as f64).sqrt();
+            worst_sqrt = worst_sqrt.max((x.approx_sqrt() as f64 / exact - 1.0).abs());
+            worst_inv = worst_inv.max((x.approx_inv_sqrt() as f64 * exact - 1.0).abs());
+            x *= 1.001;
+        }
+        std::eprintln!("approx sqrt {worst_sqrt:.4}, inverse sqrt {worst_inv:.4}");
+        if cfg!(feature = "micromath") {
+            assert!(
+                worst_sqrt < 0.061 && worst_inv < 0.035,
+                "{worst_sqrt} {worst_inv}"
+            );
+            assert!(worst_sqrt > 0.01, "micromath is really in use");
+        } else {
+            assert!(worst_sqrt < 1e-7 && worst_inv < 2e-7);
+        }
+        assert_eq!((-1.0f32).approx_sqrt(), 0.0);
+        assert_eq!(0.0f32.approx_inv_sqrt(), 0.0);
     }
 
     #[test]

@@ -428,8 +428,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         let saved = (self.pos, self.vel, self.time);
         for _ in 0..n {
             match self.settings.integrator {
-                Integrator::ExplicitEuler => self.explicit_euler(h, forces),
-                Integrator::SymplecticEuler => self.symplectic_euler(h, forces),
+                Integrator::ExplicitEuler => self.euler(h, forces, false),
+                Integrator::SymplecticEuler => self.euler(h, forces, true),
                 Integrator::Verlet => self.verlet(h, forces),
                 Integrator::Rk4 => self.rk4(h, forces),
                 Integrator::ImplicitEuler { iterations } => {
@@ -499,49 +499,38 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         forces.apply(self.time, &bodies, &mut Accelerations { acc, inv_mass: w });
     }
 
-    fn explicit_euler<F: ForceField<P>>(&mut self, h: P::Scalar, forces: &mut F) {
+    /// Accelerations at the current state.
+    fn accelerations_now<F: ForceField<P>>(&self, forces: &mut F, springs: bool) -> Sh::Of<P> {
         let mut a = Sh::filled(P::default());
         self.accelerations(
             Sh::flat(&self.pos),
             Sh::flat(&self.vel),
             forces,
             Sh::flat_mut(&mut a),
-            true,
+            springs,
         );
-        let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
-        for ((x, v), a) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)) {
-            *x += *v * h;
-            *v += *a * h;
-        }
+        a
     }
 
-    fn symplectic_euler<F: ForceField<P>>(&mut self, h: P::Scalar, forces: &mut F) {
-        let mut a = Sh::filled(P::default());
-        self.accelerations(
-            Sh::flat(&self.pos),
-            Sh::flat(&self.vel),
-            forces,
-            Sh::flat_mut(&mut a),
-            true,
-        );
+    /// Explicit (`x` then `v`) or symplectic (`v` then `x`) Euler.
+    fn euler<F: ForceField<P>>(&mut self, h: P::Scalar, forces: &mut F, symplectic: bool) {
+        let a = self.accelerations_now(forces, true);
         let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
         for ((x, v), a) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)) {
-            *v += *a * h;
-            *x += *v * h;
+            if symplectic {
+                *v += *a * h;
+                *x += *v * h;
+            } else {
+                *x += *v * h;
+                *v += *a * h;
+            }
         }
     }
 
     fn verlet<F: ForceField<P>>(&mut self, h: P::Scalar, forces: &mut F) {
         let half = h * P::Scalar::ratio(1, 2);
-        let mut a = Sh::filled(P::default());
         for kick in 0..2 {
-            self.accelerations(
-                Sh::flat(&self.pos),
-                Sh::flat(&self.vel),
-                forces,
-                Sh::flat_mut(&mut a),
-                true,
-            );
+            let a = self.accelerations_now(forces, true);
             let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
             for ((x, v), a) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)) {
                 *v += *a * half;
@@ -645,14 +634,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         let diag = P::Scalar::ONE + h * self.settings.damping;
 
         // Right side b = h·M·a0 + h²·K·v0 (the spring part of K only; damping is in a0).
-        let mut r = Sh::filled(zero);
-        self.accelerations(
-            Sh::flat(&self.pos),
-            Sh::flat(&self.vel),
-            forces,
-            Sh::flat_mut(&mut r),
-            true,
-        );
+        let mut r = self.accelerations_now(forces, true);
         for (i, ri) in Sh::flat_mut(&mut r).iter_mut().enumerate() {
             *ri = *ri * (h * mass[i]);
         }
@@ -719,15 +701,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         let n = substeps.max(1);
         let hs = h / P::Scalar::from_i16(n as i16);
         let inv_hs = P::Scalar::ONE / hs;
-        let mut a = Sh::filled(P::default());
         for _ in 0..n {
-            self.accelerations(
-                Sh::flat(&self.pos),
-                Sh::flat(&self.vel),
-                forces,
-                Sh::flat_mut(&mut a),
-                false,
-            );
+            let a = self.accelerations_now(forces, false);
             let prev = self.pos;
             {
                 let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
