@@ -49,7 +49,7 @@
 //! |---|---|---|
 //! | `std` | yes | float math from `std`, `std::error::Error` for [`Error`] |
 //! | `libm` | no | float math without `std` (exact square roots from `libm`) |
-//! | `fixed` | no | the [`Q16`] Q16.16 format, for chips without an FPU |
+//! | `fixed` | yes | the [`Q16`] Q16.16 format, for chips without an FPU |
 //! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (at most 6.1% and 3.5% off, measured) |
 //! | `xml` | no | loading the thesis's scene and physics XML files (`xml` module; needs `std`) |
 //!

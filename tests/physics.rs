@@ -3,7 +3,11 @@
 //! each integrator's documented limit.
 #![cfg(any(feature = "std", feature = "libm"))]
 
+mod common;
+
 use std::f64::consts::PI;
+
+use common::{catenary_a, jacobi_eigen, period, up_crossings};
 
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
@@ -36,22 +40,6 @@ fn oscillator_at(k: f64, c: f64, integrator: Integrator, a: f64, rest: f64) -> C
         ..Settings::default()
     };
     MassSpring::new(pos, [0.0, 1.0], springs, settings).unwrap()
-}
-
-/// Times of upward zero crossings of a sampled signal (linear interpolation).
-fn up_crossings(samples: &[(f64, f64)]) -> Vec<f64> {
-    samples
-        .windows(2)
-        .filter(|w| w[0].1 < 0.0 && w[1].1 >= 0.0)
-        .map(|w| w[0].0 + (w[1].0 - w[0].0) * (-w[0].1) / (w[1].1 - w[0].1))
-        .collect()
-}
-
-/// Mean period between upward crossings.
-fn period(samples: &[(f64, f64)]) -> f64 {
-    let c = up_crossings(samples);
-    assert!(c.len() >= 3, "too few oscillations");
-    (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64
 }
 
 fn run<const N: usize, const CAP: usize>(
@@ -137,20 +125,6 @@ fn small_angle_pendulum_period() {
     }
 }
 
-/// Catenary parameter `a` with `2a·sinh(span / 2a) = length`, by bisection.
-fn catenary_a(span: f64, length: f64) -> f64 {
-    let (mut lo, mut hi) = (1e-3f64, 1e6f64);
-    for _ in 0..200 {
-        let mid = (lo * hi).sqrt();
-        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
-            lo = mid
-        } else {
-            hi = mid
-        }
-    }
-    (lo * hi).sqrt()
-}
-
 /// A chain of `N` particles hanging at rest between pins at (±span/2, 0); returns the largest
 /// vertical distance to the catenary of the same length, relative to the sag.
 fn catenary_error<const N: usize, const CAP: usize>(span: f64, length: f64) -> f64 {
@@ -205,44 +179,6 @@ fn hanging_chain_matches_the_catenary() {
     eprintln!("catenary: N=12 {e12:.2e} of the sag, N=40 {e40:.2e}");
     // Lumped masses converge to the continuous catenary as the chain gets finer.
     assert!(e12 < 1e-2 && e40 < 1e-3 && e40 < e12 / 4.0, "{e12} {e40}");
-}
-
-/// Eigenvalues and eigenvectors of a small symmetric matrix by cyclic Jacobi rotations.
-#[allow(clippy::needless_range_loop)] // rotations index rows and columns in step
-fn jacobi_eigen<const N: usize>(mut a: [[f64; N]; N]) -> ([f64; N], [[f64; N]; N]) {
-    let mut v = [[0.0; N]; N];
-    for (i, row) in v.iter_mut().enumerate() {
-        row[i] = 1.0;
-    }
-    for _ in 0..100 {
-        for p in 0..N {
-            for q in p + 1..N {
-                if a[p][q].abs() < 1e-300 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
-                for k in 0..N {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for k in 0..N {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for row in v.iter_mut() {
-                    let (vkp, vkq) = (row[p], row[q]);
-                    row[p] = c * vkp - s * vkq;
-                    row[q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
-    (core::array::from_fn(|i| a[i][i]), v)
 }
 
 #[test]

@@ -81,3 +81,72 @@ impl Rng {
         core::array::from_fn(|_| [self.grid(scale), self.grid(scale)])
     }
 }
+
+/// Times of upward zero crossings of a sampled signal (linear interpolation).
+pub fn up_crossings(samples: &[(f64, f64)]) -> Vec<f64> {
+    samples
+        .windows(2)
+        .filter(|w| w[0].1 < 0.0 && w[1].1 >= 0.0)
+        .map(|w| w[0].0 + (w[1].0 - w[0].0) * (-w[0].1) / (w[1].1 - w[0].1))
+        .collect()
+}
+
+/// Mean period between upward crossings.
+pub fn period(samples: &[(f64, f64)]) -> f64 {
+    let c = up_crossings(samples);
+    assert!(c.len() >= 3, "too few oscillations");
+    (c[c.len() - 1] - c[0]) / (c.len() - 1) as f64
+}
+
+/// Catenary parameter `a` with `2a·sinh(span / 2a) = length`, by bisection.
+pub fn catenary_a(span: f64, length: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-3f64, 1e6f64);
+    for _ in 0..200 {
+        let mid = (lo * hi).sqrt();
+        if 2.0 * mid * (span / (2.0 * mid)).sinh() > length {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    (lo * hi).sqrt()
+}
+
+/// Eigenvalues and eigenvectors of a small symmetric matrix by cyclic Jacobi rotations.
+#[allow(clippy::needless_range_loop)] // rotations index rows and columns in step
+pub fn jacobi_eigen<const N: usize>(mut a: [[f64; N]; N]) -> ([f64; N], [[f64; N]; N]) {
+    let mut v = [[0.0; N]; N];
+    for (i, row) in v.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for _ in 0..100 {
+        for p in 0..N {
+            for q in p + 1..N {
+                if a[p][q].abs() < 1e-300 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+                for k in 0..N {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for k in 0..N {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+                for row in v.iter_mut() {
+                    let (vkp, vkq) = (row[p], row[q]);
+                    row[p] = c * vkp - s * vkq;
+                    row[q] = s * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    (core::array::from_fn(|i| a[i][i]), v)
+}
+
