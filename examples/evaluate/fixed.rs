@@ -11,8 +11,14 @@ use crate::report::{Run, Series, chart, csv};
 /// construction error.
 fn error_at<S: Scalar>(scale: f64, sampler: &impl Sampler<Vec2<S>, 4>) -> Result<f64, Error> {
     let shape = [[-1.0, -0.5], [-0.3, 1.0], [0.6, -1.0], [1.0, 0.4]];
-    let grid = shape.map(|[x, y]: [f64; 2]| [(x * scale * DENOM as f64).round() as i64, (y * scale * DENOM as f64).round() as i64]);
-    let pts = grid.map(|[x, y]| Vec2::<S>::from_f64(x as f64 / DENOM as f64, y as f64 / DENOM as f64));
+    let grid = shape.map(|[x, y]: [f64; 2]| {
+        [
+            (x * scale * DENOM as f64).round() as i64,
+            (y * scale * DENOM as f64).round() as i64,
+        ]
+    });
+    let pts =
+        grid.map(|[x, y]| Vec2::<S>::from_f64(x as f64 / DENOM as f64, y as f64 / DENOM as f64));
     Bezier::new(pts)?;
     let c = ExactCurve::<S, 4>::new(grid);
     let mut out = [Vec2::<S>::default(); 65];
@@ -21,7 +27,9 @@ fn error_at<S: Scalar>(scale: f64, sampler: &impl Sampler<Vec2<S>, 4>) -> Result
 }
 
 pub fn run(run: &mut Run) {
-    let scales: Vec<f64> = (0..=if run.quick { 9 } else { 36 }).map(|i| 10f64.powf(i as f64 * if run.quick { 0.5 } else { 0.125 })).collect();
+    let scales: Vec<f64> = (0..=if run.quick { 9 } else { 36 })
+        .map(|i| 10f64.powf(i as f64 * if run.quick { 0.5 } else { 0.125 }))
+        .collect();
     let mut rows = Vec::new();
     let mut series: Vec<(String, Vec<(f64, f64)>)> = vec![
         ("f32 de Casteljau".into(), vec![]),
@@ -30,7 +38,11 @@ pub fn run(run: &mut Run) {
     ];
     let mut q16_fails = None;
     for &s in &scales {
-        let results = [error_at::<f32>(s, &DeCasteljau), error_at::<Q16>(s, &Subdivide::default()), error_at::<Q16>(s, &DeCasteljau)];
+        let results = [
+            error_at::<f32>(s, &DeCasteljau),
+            error_at::<Q16>(s, &Subdivide::default()),
+            error_at::<Q16>(s, &DeCasteljau),
+        ];
         for (k, r) in results.iter().enumerate() {
             match r {
                 Ok(e) => series[k].1.push((s, *e)),
@@ -40,16 +52,39 @@ pub fn run(run: &mut Run) {
                     }
                 }
             }
-            rows.push(vec![series[k].0.clone(), format!("{s:.4e}"), r.map_or_else(|e| format!("error: {e}"), |e| format!("{e:.4e}"))]);
+            rows.push(vec![
+                series[k].0.clone(),
+                format!("{s:.4e}"),
+                r.map_or_else(|e| format!("error: {e}"), |e| format!("{e:.4e}")),
+            ]);
         }
     }
-    let mut plotted: Vec<Series> = series.into_iter().map(|(n, p)| Series::line(n, p)).collect();
+    let mut plotted: Vec<Series> = series
+        .into_iter()
+        .map(|(n, p)| Series::line(n, p))
+        .collect();
     if let Some((s, _)) = q16_fails {
-        plotted.push(Series::line("Q16.16 refuses coordinates past 16383", vec![(s, 1e-6), (s, 10.0)]));
+        plotted.push(Series::line(
+            "Q16.16 refuses coordinates past 16383",
+            vec![(s, 1e-6), (s, 10.0)],
+        ));
     }
-    chart(&run.path("fixed.svg"), "Sampling error as the coordinates grow: Q16.16 against f32 (a cubic, 65 points)", "coordinate scale (px)", "max error (px) vs exact", &plotted, true);
-    csv(&run.path("fixed.csv"), &["method", "scale_px", "max_error_px"], &rows);
-    let fail = q16_fails.map_or("never in range".into(), |(s, e)| format!("from a scale of {s:.0} px ({e})"));
+    chart(
+        &run.path("fixed.svg"),
+        "Sampling error as the coordinates grow: Q16.16 against f32 (a cubic, 65 points)",
+        "coordinate scale (px)",
+        "max error (px) vs exact",
+        &plotted,
+        true,
+    );
+    csv(
+        &run.path("fixed.csv"),
+        &["method", "scale_px", "max_error_px"],
+        &rows,
+    );
+    let fail = q16_fails.map_or("never in range".into(), |(s, e)| {
+        format!("from a scale of {s:.0} px ({e})")
+    });
     run.section(
         "(e) Fixed against float",
         &format!(

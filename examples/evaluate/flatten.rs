@@ -15,13 +15,19 @@ fn deviation(c: &CubicBez, poly: &[KPoint]) -> f64 {
     let seg = |p: KPoint, a: KPoint, b: KPoint| {
         let d = b - a;
         let len2 = d.hypot2();
-        let t = if len2 > 0.0 { ((p - a).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if len2 > 0.0 {
+            ((p - a).dot(d) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         (p - (a + d * t)).hypot()
     };
     (0..=2000)
         .map(|i| {
             let p = c.eval(i as f64 / 2000.0);
-            poly.windows(2).map(|w| seg(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
+            poly.windows(2)
+                .map(|w| seg(p, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min)
         })
         .fold(0.0, f64::max)
 }
@@ -32,7 +38,9 @@ fn cubic(p: &[[f64; 2]; 4]) -> CubicBez {
 }
 
 fn dunas_flatten(c: &Bezier<Vec2<f64>, 4>, tol: f64, out: &mut [Vec2<f64>]) -> usize {
-    let n = lod::segments(c, tol).expect("valid tolerance").min(out.len() - 1);
+    let n = lod::segments(c, tol)
+        .expect("valid tolerance")
+        .min(out.len() - 1);
     DeCasteljau.sample(c, &mut out[..=n]).expect("buffer")
 }
 
@@ -44,18 +52,28 @@ fn lyon_flatten(c: &CubicBezierSegment<f64>, tol: f64, out: &mut Vec<KPoint>) {
 
 fn kurbo_flatten(c: &CubicBez, tol: f64, out: &mut Vec<KPoint>) {
     out.clear();
-    kurbo::flatten([PathEl::MoveTo(c.p0), PathEl::CurveTo(c.p1, c.p2, c.p3)], tol, |el| match el {
-        PathEl::MoveTo(p) | PathEl::LineTo(p) => out.push(p),
-        _ => {}
-    });
+    kurbo::flatten(
+        [PathEl::MoveTo(c.p0), PathEl::CurveTo(c.p1, c.p2, c.p3)],
+        tol,
+        |el| match el {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) => out.push(p),
+            _ => {}
+        },
+    );
 }
 
 pub fn run(run: &mut Run) {
-    let tolerances: &[f64] = if run.quick { &[0.25, 1.0] } else { &[0.05, 0.1, 0.25, 0.5, 1.0, 2.0] };
+    let tolerances: &[f64] = if run.quick {
+        &[0.25, 1.0]
+    } else {
+        &[0.05, 0.1, 0.25, 0.5, 1.0, 2.0]
+    };
     let count = if run.quick { 20 } else { 200 };
     let mut rng = Rng(0xf1a7);
     let curves: Vec<[[f64; 2]; 4]> = (0..count)
-        .map(|_| core::array::from_fn(|_| [rng.grid(200) as f64 / 16.0, rng.grid(200) as f64 / 16.0]))
+        .map(|_| {
+            core::array::from_fn(|_| [rng.grid(200) as f64 / 16.0, rng.grid(200) as f64 / 16.0])
+        })
         .collect();
     let mut rows = Vec::new();
     let mut seg_series = [vec![], vec![], vec![]];
@@ -69,7 +87,12 @@ pub fn run(run: &mut Run) {
         for p in &curves {
             let d = Bezier::new(p.map(|[x, y]| Vec2::new(x, y))).expect("in range");
             let k = cubic(p);
-            let l = CubicBezierSegment { from: point(p[0][0], p[0][1]), ctrl1: point(p[1][0], p[1][1]), ctrl2: point(p[2][0], p[2][1]), to: point(p[3][0], p[3][1]) };
+            let l = CubicBezierSegment {
+                from: point(p[0][0], p[0][1]),
+                ctrl1: point(p[1][0], p[1][1]),
+                ctrl2: point(p[2][0], p[2][1]),
+                to: point(p[3][0], p[3][1]),
+            };
             let n = dunas_flatten(&d, tol, &mut buf);
             let dp: Vec<KPoint> = buf[..n].iter().map(|q| KPoint::new(q.x, q.y)).collect();
             segs[0] += n - 1;
@@ -91,7 +114,12 @@ pub fn run(run: &mut Run) {
         }) / count as f64;
         ns[1] = median_ns(reps, 1, || {
             for p in &curves {
-                let l = CubicBezierSegment { from: point(p[0][0], p[0][1]), ctrl1: point(p[1][0], p[1][1]), ctrl2: point(p[2][0], p[2][1]), to: point(p[3][0], p[3][1]) };
+                let l = CubicBezierSegment {
+                    from: point(p[0][0], p[0][1]),
+                    ctrl1: point(p[1][0], p[1][1]),
+                    ctrl2: point(p[2][0], p[2][1]),
+                    to: point(p[3][0], p[3][1]),
+                };
                 lyon_flatten(&l, tol, &mut poly);
                 std::hint::black_box(&poly);
             }
@@ -106,25 +134,69 @@ pub fn run(run: &mut Run) {
             let mean = segs[i] as f64 / count as f64;
             seg_series[i].push((tol, mean));
             time_series[i].push((tol, ns[i]));
-            rows.push(vec![names[i].into(), format!("{tol}"), format!("{mean:.2}"), format!("{:.1}", ns[i]), format!("{:.4}", worst[i])]);
+            rows.push(vec![
+                names[i].into(),
+                format!("{tol}"),
+                format!("{mean:.2}"),
+                format!("{:.1}", ns[i]),
+                format!("{:.4}", worst[i]),
+            ]);
             if tol == 0.25 {
                 at_quarter[i] = (mean, ns[i], worst[i]);
             }
         }
     }
-    let segs: Vec<Series> = names.iter().zip(seg_series).map(|(n, p)| Series::line(*n, p)).collect();
-    chart(&run.path("lod_segments.svg"), "Flattening random cubics (±200 px): mean segments per curve", "tolerance (px)", "segments per curve", &segs, true);
-    let times: Vec<Series> = names.iter().zip(time_series).map(|(n, p)| Series::line(*n, p)).collect();
-    chart(&run.path("lod_time.svg"), "Flattening random cubics (±200 px): time per curve", "tolerance (px)", "ns per curve", &times, true);
-    csv(&run.path("lod.csv"), &["flattener", "tolerance_px", "mean_segments", "ns_per_curve", "max_deviation_px"], &rows);
+    let segs: Vec<Series> = names
+        .iter()
+        .zip(seg_series)
+        .map(|(n, p)| Series::line(*n, p))
+        .collect();
+    chart(
+        &run.path("lod_segments.svg"),
+        "Flattening random cubics (±200 px): mean segments per curve",
+        "tolerance (px)",
+        "segments per curve",
+        &segs,
+        true,
+    );
+    let times: Vec<Series> = names
+        .iter()
+        .zip(time_series)
+        .map(|(n, p)| Series::line(*n, p))
+        .collect();
+    chart(
+        &run.path("lod_time.svg"),
+        "Flattening random cubics (±200 px): time per curve",
+        "tolerance (px)",
+        "ns per curve",
+        &times,
+        true,
+    );
+    csv(
+        &run.path("lod.csv"),
+        &[
+            "flattener",
+            "tolerance_px",
+            "mean_segments",
+            "ns_per_curve",
+            "max_deviation_px",
+        ],
+        &rows,
+    );
     let [d, l, k] = at_quarter;
     let count_ratio = d.0 / k.0;
     let speed = k.1 / d.1;
-    let tol_ok = rows.iter().filter(|r| r[0] == names[0]).all(|r| r[4].parse::<f64>().unwrap_or(f64::MAX) <= r[1].parse::<f64>().unwrap_or(0.0));
+    let tol_ok = rows
+        .iter()
+        .filter(|r| r[0] == names[0])
+        .all(|r| r[4].parse::<f64>().unwrap_or(f64::MAX) <= r[1].parse::<f64>().unwrap_or(0.0));
     run.target(
         "flattening within 1.15× kurbo's segment count at tolerance 0.25, never over tolerance, at least 3× faster than kurbo",
         format!("{count_ratio:.2}× kurbo's segments, {speed:.1}× faster, {} over tolerance", if tol_ok { "never" } else { "sometimes" }),
         count_ratio <= 1.15 && tol_ok && speed >= 3.0,
+        "dunas flattens uniformly with Wang's count, as lyon_geom does; kurbo places its points adaptively by \
+         curvature and needs about half as many. A non-uniform flattener would close the gap; dunas stays within \
+         tolerance where kurbo does not",
     );
     run.section(
         "(f) Level of detail",

@@ -19,12 +19,20 @@ const EXPLICIT: [(&str, Integrator); 5] = [
     ("SymplecticEuler", Integrator::SymplecticEuler),
     ("Verlet", Integrator::Verlet),
     ("Rk4", Integrator::Rk4),
-    ("ImplicitEuler(16)", Integrator::ImplicitEuler { iterations: 16 }),
+    (
+        "ImplicitEuler(16)",
+        Integrator::ImplicitEuler { iterations: 16 },
+    ),
     ("Xpbd(1)", Integrator::Xpbd { substeps: 1 }),
 ];
 
 /// Runs `steps` calls of `step` and returns (wall ns spent, samples of `probe` after each).
-fn timed<T>(sys: &mut T, steps: usize, mut step: impl FnMut(&mut T), mut probe: impl FnMut(&T) -> f64) -> (f64, Vec<f64>) {
+fn timed<T>(
+    sys: &mut T,
+    steps: usize,
+    mut step: impl FnMut(&mut T),
+    mut probe: impl FnMut(&T) -> f64,
+) -> (f64, Vec<f64>) {
     let mut samples = Vec::with_capacity(steps);
     let mut spent = 0.0;
     for _ in 0..steps {
@@ -43,10 +51,18 @@ fn oscillator(integrator: Integrator, h: f64) -> (f64, f64) {
     let pos = [Vec2::new(0.0, 0.0), Vec2::new(10.0 + a, 0.0)];
     let mut springs = Springs::new(Material::new(k, c).expect("valid"));
     springs.connect_with_rest(2, 0, 1, 10.0).expect("valid");
-    let settings = Settings { integrator, ..Settings::default() };
+    let settings = Settings {
+        integrator,
+        ..Settings::default()
+    };
     let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     let steps = (2.0 / h).round() as usize;
-    let (spent, xs) = timed(&mut sys, steps, |s| s.step_once(h, ()).expect("stable"), |s| s.positions()[1].x - 10.0);
+    let (spent, xs) = timed(
+        &mut sys,
+        steps,
+        |s| s.step_once(h, ()).expect("stable"),
+        |s| s.positions()[1].x - 10.0,
+    );
     let (w0, zeta) = (10.0f64, 0.02f64);
     let wd = w0 * (1.0 - zeta * zeta).sqrt();
     let err = xs
@@ -54,7 +70,8 @@ fn oscillator(integrator: Integrator, h: f64) -> (f64, f64) {
         .enumerate()
         .map(|(i, x)| {
             let t = (i + 1) as f64 * h;
-            let exact = a * (-zeta * w0 * t).exp() * ((wd * t).cos() + zeta * w0 / wd * (wd * t).sin());
+            let exact =
+                a * (-zeta * w0 * t).exp() * ((wd * t).cos() + zeta * w0 / wd * (wd * t).sin());
             (x - exact).abs() / a
         })
         .fold(0.0, f64::max);
@@ -66,15 +83,33 @@ fn pendulum(integrator: Integrator, dt: f64) -> (f64, f64) {
     let (g, len, theta, k) = (9.81f64, 1.0f64, 0.05f64, 1e5);
     let stretched = len + g / k;
     let exact = 2.0 * PI * (stretched / g).sqrt() * (1.0 + theta * theta / 16.0);
-    let pos = [Vec2::new(0.0, 0.0), Vec2::new(stretched * theta.sin(), -stretched * theta.cos())];
+    let pos = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(stretched * theta.sin(), -stretched * theta.cos()),
+    ];
     let mut springs = Springs::new(Material::new(k, 0.0).expect("valid"));
     springs.connect_with_rest(2, 0, 1, len).expect("valid");
-    let settings = Settings { integrator, gravity: Vec2::new(0.0, -g), ..Settings::default() };
+    let settings = Settings {
+        integrator,
+        gravity: Vec2::new(0.0, -g),
+        ..Settings::default()
+    };
     let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     let seconds = 8.0;
     let steps = (seconds / dt).round() as usize;
-    let (spent, xs) = timed(&mut sys, steps, |s| { s.step(dt).expect("stable"); }, |s| s.positions()[1].x);
-    let samples: Vec<(f64, f64)> = xs.iter().enumerate().map(|(i, &x)| ((i + 1) as f64 * dt, x)).collect();
+    let (spent, xs) = timed(
+        &mut sys,
+        steps,
+        |s| {
+            s.step(dt).expect("stable");
+        },
+        |s| s.positions()[1].x,
+    );
+    let samples: Vec<(f64, f64)> = xs
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| ((i + 1) as f64 * dt, x))
+        .collect();
     (spent / seconds, (period(&samples) - exact).abs() / exact)
 }
 
@@ -94,7 +129,9 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
         }
     }
     let (lambda, vecs) = jacobi_eigen(a);
-    let idx = (0..N).min_by(|&x, &y| lambda[x].total_cmp(&lambda[y])).expect("N > 0");
+    let idx = (0..N)
+        .min_by(|&x, &y| lambda[x].total_cmp(&lambda[y]))
+        .expect("N > 0");
     let exact = (g / l * lambda[idx]).sqrt();
     let peak = (0..N).map(|i| vecs[i][idx].abs()).fold(0.0, f64::max);
     let mut pos = [Vec2::new(0.0, 0.0); N + 1];
@@ -106,16 +143,33 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
     }
     let mut springs = Springs::new(Material::new(k, 0.0).expect("valid"));
     for i in 0..N {
-        springs.connect_with_rest(N + 1, i, i + 1, l).expect("valid");
+        springs
+            .connect_with_rest(N + 1, i, i + 1, l)
+            .expect("valid");
     }
     let mut inv = [1.0; N + 1];
     inv[0] = 0.0;
-    let settings = Settings { integrator, gravity: Vec2::new(0.0, -g), ..Settings::default() };
+    let settings = Settings {
+        integrator,
+        gravity: Vec2::new(0.0, -g),
+        ..Settings::default()
+    };
     let mut sys: Chain<{ N + 1 }, N> = MassSpring::new(pos, inv, springs, settings).expect("valid");
     let seconds = 4.0 * 2.0 * PI / exact;
     let steps = (seconds / dt).round() as usize;
-    let (spent, xs) = timed(&mut sys, steps, |s| { s.step(dt).expect("stable"); }, |s| s.positions()[N].x);
-    let samples: Vec<(f64, f64)> = xs.iter().enumerate().map(|(i, &x)| ((i + 1) as f64 * dt, x)).collect();
+    let (spent, xs) = timed(
+        &mut sys,
+        steps,
+        |s| {
+            s.step(dt).expect("stable");
+        },
+        |s| s.positions()[N].x,
+    );
+    let samples: Vec<(f64, f64)> = xs
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| ((i + 1) as f64 * dt, x))
+        .collect();
     let measured = 2.0 * PI / period(&samples);
     (spent / seconds, (measured - exact).abs() / exact)
 }
@@ -130,7 +184,10 @@ fn catenary(integrator: Integrator) -> (f64, f64) {
     let dy = (seg * seg - half_dx * half_dx).sqrt();
     let pos: [Vec2<f64>; N] = core::array::from_fn(|i| {
         let from_mid = (i as f64 - (N - 1) as f64 / 2.0).abs();
-        Vec2::new(-span / 2.0 + i as f64 * half_dx, -((N - 1) as f64 / 2.0 - from_mid) * dy)
+        Vec2::new(
+            -span / 2.0 + i as f64 * half_dx,
+            -((N - 1) as f64 / 2.0 - from_mid) * dy,
+        )
     });
     let mut springs = Springs::new(Material::new(1e7, 0.0).expect("valid"));
     for i in 0..N - 1 {
@@ -139,26 +196,68 @@ fn catenary(integrator: Integrator) -> (f64, f64) {
     let mut inv = [N as f64; N];
     inv[0] = 0.0;
     inv[N - 1] = 0.0;
-    let settings = Settings { integrator, gravity: Vec2::new(0.0, -9.81), damping: 2.0, ..Settings::default() };
+    let settings = Settings {
+        integrator,
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    };
     let mut sys: Chain<N, { N - 1 }> = MassSpring::new(pos, inv, springs, settings).expect("valid");
     let seconds = 10.0;
-    let (spent, _) = timed(&mut sys, 300, |s| { s.step(1.0 / 30.0).expect("stable"); }, |_| 0.0);
+    let (spent, _) = timed(
+        &mut sys,
+        300,
+        |s| {
+            s.step(1.0 / 30.0).expect("stable");
+        },
+        |_| 0.0,
+    );
     let a = catenary_a(span, length);
     let c = -a * (span / (2.0 * a)).cosh();
     let sag = -(a + c);
-    let err = sys.positions().iter().map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag).fold(0.0, f64::max);
+    let err = sys
+        .positions()
+        .iter()
+        .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
+        .fold(0.0, f64::max);
     (spent / seconds, err)
 }
 
 pub fn run(run: &mut Run) {
     let mut rows = Vec::new();
-    let steps: &[f64] = if run.quick { &[1.0 / 60.0, 1.0 / 240.0] } else { &[1.0 / 30.0, 1.0 / 60.0, 1.0 / 120.0, 1.0 / 240.0, 1.0 / 480.0, 1.0 / 960.0] };
+    let steps: &[f64] = if run.quick {
+        &[1.0 / 60.0, 1.0 / 240.0]
+    } else {
+        &[
+            1.0 / 30.0,
+            1.0 / 60.0,
+            1.0 / 120.0,
+            1.0 / 240.0,
+            1.0 / 480.0,
+            1.0 / 960.0,
+        ]
+    };
     let mut sections = Vec::new();
     type Reference = fn(Integrator, f64) -> (f64, f64);
     let references: [(&str, &str, &str, Reference); 3] = [
-        ("oscillator", "integ_oscillator.svg", "Damped oscillator (ω0 = 10, ζ = 0.02): max deviation / amplitude, fixed step", oscillator),
-        ("pendulum", "integ_pendulum.svg", "Small-angle pendulum on a stiff spring: period error, substeps from stiffness", pendulum),
-        ("chain_mode", "integ_modes.svg", "Chain of 8 hanging from a pin: fundamental frequency error vs its eigenvalue", chain_mode),
+        (
+            "oscillator",
+            "integ_oscillator.svg",
+            "Damped oscillator (ω0 = 10, ζ = 0.02): max deviation / amplitude, fixed step",
+            oscillator,
+        ),
+        (
+            "pendulum",
+            "integ_pendulum.svg",
+            "Small-angle pendulum on a stiff spring: period error, substeps from stiffness",
+            pendulum,
+        ),
+        (
+            "chain_mode",
+            "integ_modes.svg",
+            "Chain of 8 hanging from a pin: fundamental frequency error vs its eigenvalue",
+            chain_mode,
+        ),
     ];
     for (reference, file, title, f) in references {
         let mut series = Vec::new();
@@ -166,37 +265,98 @@ pub fn run(run: &mut Run) {
             let mut pts = Vec::new();
             for &dt in steps {
                 // The oscillator uses fixed steps: skip the ones outside an explicit method's limit.
-                if reference == "oscillator" && integrator.stability_limit::<f64>().is_some_and(|l| 10.0 * dt >= l * 0.95) {
+                if reference == "oscillator"
+                    && integrator
+                        .stability_limit::<f64>()
+                        .is_some_and(|l| 10.0 * dt >= l * 0.95)
+                {
                     continue;
                 }
                 let (ns_per_s, err) = f(integrator, dt);
-                rows.push(vec![reference.into(), name.into(), format!("{dt:.6}"), format!("{ns_per_s:.0}"), format!("{err:.3e}")]);
+                rows.push(vec![
+                    reference.into(),
+                    name.into(),
+                    format!("{dt:.6}"),
+                    format!("{ns_per_s:.0}"),
+                    format!("{err:.3e}"),
+                ]);
                 pts.push((ns_per_s, err));
             }
             series.push(Series::line(name, pts));
         }
-        chart(&run.path(file), title, "CPU ns per simulated second", "relative error", &series, true);
+        chart(
+            &run.path(file),
+            title,
+            "CPU ns per simulated second",
+            "relative error",
+            &series,
+            true,
+        );
         sections.push(format!("![{reference}]({file})"));
     }
     let mut series = Vec::new();
-    let budgets: &[u8] = if run.quick { &[4, 16] } else { &[2, 4, 8, 16, 32, 64] };
-    for (name, make) in [("ImplicitEuler(iterations)", (|b| Integrator::ImplicitEuler { iterations: b }) as fn(u8) -> Integrator), ("Xpbd(substeps)", |b| Integrator::Xpbd { substeps: b })] {
+    let budgets: &[u8] = if run.quick {
+        &[4, 16]
+    } else {
+        &[2, 4, 8, 16, 32, 64]
+    };
+    for (name, make) in [
+        (
+            "ImplicitEuler(iterations)",
+            (|b| Integrator::ImplicitEuler { iterations: b }) as fn(u8) -> Integrator,
+        ),
+        ("Xpbd(substeps)", |b| Integrator::Xpbd { substeps: b }),
+    ] {
         let mut pts = Vec::new();
         for &b in budgets {
             let (ns_per_s, err) = catenary(make(b));
-            rows.push(vec!["catenary".into(), format!("{name}={b}"), "0.033333".into(), format!("{ns_per_s:.0}"), format!("{err:.3e}")]);
+            rows.push(vec![
+                "catenary".into(),
+                format!("{name}={b}"),
+                "0.033333".into(),
+                format!("{ns_per_s:.0}"),
+                format!("{err:.3e}"),
+            ]);
             pts.push((ns_per_s, err));
         }
         series.push(Series::line(name, pts));
     }
-    chart(&run.path("integ_catenary.svg"), "Chain of 40 between two pins after 10 s at 30 Hz: sag error vs the catenary", "CPU ns per simulated second", "max error / sag", &series, true);
+    chart(
+        &run.path("integ_catenary.svg"),
+        "Chain of 40 between two pins after 10 s at 30 Hz: sag error vs the catenary",
+        "CPU ns per simulated second",
+        "max error / sag",
+        &series,
+        true,
+    );
     sections.push("![catenary](integ_catenary.svg)".into());
-    csv(&run.path("integrators.csv"), &["reference", "integrator", "dt_s", "ns_per_simulated_s", "relative_error"], &rows);
+    csv(
+        &run.path("integrators.csv"),
+        &[
+            "reference",
+            "integrator",
+            "dt_s",
+            "ns_per_simulated_s",
+            "relative_error",
+        ],
+        &rows,
+    );
     let best = |reference: &str| {
         rows.iter()
             .filter(|r| r[0] == reference)
-            .min_by(|a, b| a[4].parse::<f64>().unwrap_or(f64::MAX).total_cmp(&b[4].parse::<f64>().unwrap_or(f64::MAX)))
-            .map(|r| format!("{} at dt {} s: {}", r[1], r[2], num(r[4].parse().unwrap_or(f64::NAN))))
+            .min_by(|a, b| {
+                a[4].parse::<f64>()
+                    .unwrap_or(f64::MAX)
+                    .total_cmp(&b[4].parse::<f64>().unwrap_or(f64::MAX))
+            })
+            .map(|r| {
+                format!(
+                    "{} at dt {} s: {}",
+                    r[1],
+                    r[2],
+                    num(r[4].parse().unwrap_or(f64::NAN))
+                )
+            })
             .unwrap_or_default()
     };
     let text = format!(

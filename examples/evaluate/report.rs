@@ -12,8 +12,8 @@ pub struct Run {
     pub out: PathBuf,
     /// Markdown of the summary, section by section.
     pub summary: String,
-    /// Target lines: (target, measured, met).
-    pub targets: Vec<(String, String, bool)>,
+    /// Target lines: (target, measured, met, why when missed).
+    pub targets: Vec<(String, String, bool, String)>,
 }
 
 impl Run {
@@ -30,8 +30,14 @@ impl Run {
         let _ = writeln!(self.summary, "\n## {title}\n\n{text}");
     }
 
-    pub fn target(&mut self, what: &str, measured: String, met: bool) {
-        self.targets.push((what.to_string(), measured, met));
+    /// Records a target; `why` explains a miss (ignored when met).
+    pub fn target(&mut self, what: &str, measured: String, met: bool, why: &str) {
+        self.targets.push((
+            what.to_string(),
+            measured,
+            met,
+            if met { String::new() } else { why.to_string() },
+        ));
     }
 }
 
@@ -71,10 +77,18 @@ pub struct Series {
 
 impl Series {
     pub fn dots(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
-        Series { name: name.into(), points, line: false }
+        Series {
+            name: name.into(),
+            points,
+            line: false,
+        }
     }
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Series {
-        Series { name: name.into(), points, line: true }
+        Series {
+            name: name.into(),
+            points,
+            line: true,
+        }
     }
 }
 
@@ -91,28 +105,59 @@ const COLORS: [RGBColor; 8] = [
 
 /// A log-log (or log-x, linear-y) scatter/line chart as SVG. Non-positive values are clamped to
 /// the smallest positive one so that exact results still show.
-pub fn chart(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series], log_y: bool) {
-    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+pub fn chart(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+    log_y: bool,
+) {
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
     let pos = |v: f64| v > 0.0;
-    let floor_x = all.iter().map(|p| p.0).filter(|&v| pos(v)).fold(f64::INFINITY, f64::min);
-    let floor_y = all.iter().map(|p| p.1).filter(|&v| pos(v)).fold(f64::INFINITY, f64::min);
-    let (floor_x, floor_y) = (if floor_x.is_finite() { floor_x } else { 1e-3 }, if floor_y.is_finite() { floor_y } else { 1e-3 });
+    let floor_x = all
+        .iter()
+        .map(|p| p.0)
+        .filter(|&v| pos(v))
+        .fold(f64::INFINITY, f64::min);
+    let floor_y = all
+        .iter()
+        .map(|p| p.1)
+        .filter(|&v| pos(v))
+        .fold(f64::INFINITY, f64::min);
+    let (floor_x, floor_y) = (
+        if floor_x.is_finite() { floor_x } else { 1e-3 },
+        if floor_y.is_finite() { floor_y } else { 1e-3 },
+    );
     let fix = |p: (f64, f64)| (p.0.max(floor_x), if log_y { p.1.max(floor_y) } else { p.1 });
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for p in all.iter().map(|&p| fix(p)) {
         x0 = x0.min(p.0);
         x1 = x1.max(p.0);
         y0 = y0.min(p.1);
         y1 = y1.max(p.1);
     }
-    if !(x0 < x1) {
+    if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) {
         x1 = x0 * 2.0 + 1.0;
     }
-    if !(y0 < y1) {
+    if y0.partial_cmp(&y1) != Some(std::cmp::Ordering::Less) {
         y1 = y0 * 2.0 + 1.0;
     }
     let (x0, x1) = (x0 / 1.5, x1 * 1.5);
-    let (y0, y1) = if log_y { (y0 / 3.0, y1 * 3.0) } else { (y0 - 0.05 * (y1 - y0), y1 + 0.05 * (y1 - y0)) };
+    let (y0, y1) = if log_y {
+        (y0 / 3.0, y1 * 3.0)
+    } else {
+        (y0 - 0.05 * (y1 - y0), y1 + 0.05 * (y1 - y0))
+    };
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).expect("svg");
     // One drawing body for both axis types (log or linear y).
@@ -125,20 +170,40 @@ pub fn chart(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[S
                 .y_label_area_size(70)
                 .build_cartesian_2d((x0..x1).log_scale(), $y)
                 .expect("svg");
-            chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().expect("svg");
+            chart
+                .configure_mesh()
+                .x_desc(x_label)
+                .y_desc(y_label)
+                .draw()
+                .expect("svg");
             for (k, s) in series.iter().enumerate() {
                 let color = COLORS[k % COLORS.len()];
-                let pts: Vec<(f64, f64)> =
-                    s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).map(fix).collect();
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|p| p.0.is_finite() && p.1.is_finite())
+                    .map(fix)
+                    .collect();
                 let anno = if s.line {
-                    chart.draw_series(LineSeries::new(pts, color.stroke_width(2))).expect("svg")
+                    chart
+                        .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                        .expect("svg")
                 } else {
-                    chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, color.filled()))).expect("svg")
+                    chart
+                        .draw_series(pts.into_iter().map(|p| Circle::new(p, 4, color.filled())))
+                        .expect("svg")
                 };
-                anno.label(s.name.clone())
-                    .legend(move |(x, y)| Rectangle::new([(x, y - 4), (x + 12, y + 4)], color.filled()));
+                anno.label(s.name.clone()).legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 4), (x + 12, y + 4)], color.filled())
+                });
             }
-            chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw().expect("svg");
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()
+                .expect("svg");
         }};
     }
     if log_y {

@@ -7,6 +7,7 @@ use dunas::spring::Material;
 use dunas::system::Settings;
 use dunas::{Cloth, Integrator, Point, Rope, Vec2, Vec3};
 
+use crate::common::{hausdorff, sharpest_corner};
 use crate::report::{Run, Series, chart, csv, median_ns, num};
 
 const LENGTH: f64 = 70.0;
@@ -26,7 +27,10 @@ enum Scene {
     Swing,
 }
 
-fn rope<const N: usize, const CAP: usize>(scene: Scene, integrator: Integrator) -> Rope<Vec2<f64>, N, CAP> {
+fn rope<const N: usize, const CAP: usize>(
+    scene: Scene,
+    integrator: Integrator,
+) -> Rope<Vec2<f64>, N, CAP> {
     let segments = (N - 1) as f64;
     let settings = Settings {
         integrator,
@@ -35,10 +39,18 @@ fn rope<const N: usize, const CAP: usize>(scene: Scene, integrator: Integrator) 
         ..Settings::default()
     };
     let material = Material::new(ROPE_K * segments, 0.5 * segments).expect("valid");
-    let mut r = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(LENGTH, 0.0), MASS, material, settings).expect("valid");
+    let mut r = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(LENGTH, 0.0),
+        MASS,
+        material,
+        settings,
+    )
+    .expect("valid");
     if scene == Scene::Rest {
         r.set_inv_mass(N - 1, 0.0).expect("in range");
-        r.set_position(N - 1, Vec2::new(50.0, 0.0)).expect("in range");
+        r.set_position(N - 1, Vec2::new(50.0, 0.0))
+            .expect("in range");
     }
     r
 }
@@ -52,54 +64,39 @@ fn settle<const N: usize, const CAP: usize>(r: &mut Rope<Vec2<f64>, N, CAP>, sce
     }
 }
 
-/// Distance from `p` to the polyline `line`.
-fn to_polyline(p: Vec2<f64>, line: &[Vec2<f64>]) -> f64 {
-    line.windows(2)
-        .map(|w| {
-            let d = w[1] - w[0];
-            let len2 = d.dot(d);
-            let t = if len2 > 0.0 { ((p - w[0]).dot(d) / len2).clamp(0.0, 1.0) } else { 0.0 };
-            (p - (w[0] + d * t)).length()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Symmetric Hausdorff distance between two polylines (each densified to 256 points).
-fn hausdorff(a: &[Vec2<f64>], b: &[Vec2<f64>]) -> f64 {
-    let dense = |l: &[Vec2<f64>]| -> Vec<Vec2<f64>> {
-        let per = (256 / (l.len() - 1)).max(1);
-        let mut out = Vec::new();
-        for w in l.windows(2) {
-            for k in 0..per {
-                out.push(w[0].lerp(w[1], k as f64 / per as f64));
-            }
-        }
-        out.push(l[l.len() - 1]);
-        out
-    };
-    let (da, db) = (dense(a), dense(b));
-    let one = |x: &[Vec2<f64>], y: &[Vec2<f64>]| x.iter().map(|&p| to_polyline(p, y)).fold(0.0, f64::max);
-    one(&da, b).max(one(&db, a))
-}
-
 /// The drawn curve of a rope.
-fn drawn<const N: usize, const CAP: usize>(r: &Rope<Vec2<f64>, N, CAP>, smoothing: Smoothing) -> Vec<Vec2<f64>> {
+fn drawn<const N: usize, const CAP: usize>(
+    r: &Rope<Vec2<f64>, N, CAP>,
+    smoothing: Smoothing,
+) -> Vec<Vec2<f64>> {
     if smoothing == Smoothing::Polyline {
         return r.positions().to_vec();
     }
     let mut out = vec![Vec2::default(); DRAWN];
-    let n = r.sample(smoothing, &mut out).expect("buffer holds the curve");
+    let n = r
+        .sample(smoothing, &mut out)
+        .expect("buffer holds the curve");
     out.truncate(n);
     out
 }
 
 /// Cost of one frame in f32: a 60 Hz step (substeps from stiffness) plus drawing.
 fn frame_ns<const N: usize, const CAP: usize>(run: &Run, smoothing: Smoothing) -> f64 {
-    let settings = Settings { gravity: Vec2::new(0.0, GRAVITY as f32), damping: 0.05, ..Settings::default() };
+    let settings = Settings {
+        gravity: Vec2::new(0.0, GRAVITY as f32),
+        damping: 0.05,
+        ..Settings::default()
+    };
     let segments = (N - 1) as f32;
     let material = Material::new(ROPE_K as f32 * segments, 0.5 * segments).expect("valid");
-    let mut r: Rope<Vec2<f32>, N, CAP> =
-        Rope::new(Vec2::new(0.0, 0.0), Vec2::new(LENGTH as f32, 0.0), MASS as f32, material, settings).expect("valid");
+    let mut r: Rope<Vec2<f32>, N, CAP> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(LENGTH as f32, 0.0),
+        MASS as f32,
+        material,
+        settings,
+    )
+    .expect("valid");
     for _ in 0..10 {
         r.step(DT as f32).expect("stable");
     }
@@ -125,20 +122,39 @@ struct RopeRow {
     scene: &'static str,
     ns: f64,
     error: f64,
+    corner: f64,
 }
 
-fn rope_rows<const N: usize, const CAP: usize>(run: &Run, references: &[Vec<Vec2<f64>>; 2], rows: &mut Vec<RopeRow>) {
+fn rope_rows<const N: usize, const CAP: usize>(
+    run: &Run,
+    references: &[Vec<Vec2<f64>>; 2],
+    rows: &mut Vec<RopeRow>,
+) {
     for (s, scene) in [(0, Scene::Rest), (1, Scene::Swing)] {
-        for smoothing in [Smoothing::Bezier, Smoothing::BSpline, Smoothing::CatmullRom, Smoothing::Polyline] {
+        for smoothing in [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::Polyline,
+        ] {
             let mut r = rope::<N, CAP>(scene, Integrator::SymplecticEuler);
             if scene == Scene::Rest && smoothing != Smoothing::Polyline {
                 // The library's pipeline: rest lengths calibrated so the drawn curve is 70 long.
-                r.calibrate_length(smoothing, LENGTH, DT, 120).expect("stable");
+                r.calibrate_length(smoothing, LENGTH, DT, 120)
+                    .expect("stable");
             }
             settle(&mut r, scene);
-            let error = hausdorff(&drawn(&r, smoothing), &references[s]);
+            let line = drawn(&r, smoothing);
+            let (error, corner) = (hausdorff(&line, &references[s]), sharpest_corner(&line));
             let ns = frame_ns::<N, CAP>(run, smoothing);
-            rows.push(RopeRow { n: N, smoothing, scene: if s == 0 { "rest" } else { "swing" }, ns, error });
+            rows.push(RopeRow {
+                n: N,
+                smoothing,
+                scene: if s == 0 { "rest" } else { "swing" },
+                ns,
+                error,
+                corner,
+            });
         }
     }
 }
@@ -164,17 +180,20 @@ fn smoothing_name(s: Smoothing) -> &'static str {
     }
 }
 
-/// The cheapest raw rope reaching `error`, by linear interpolation of cost between the raw
-/// ropes on either side of it; `None` if no raw rope up to the largest reaches it.
-fn raw_cost_at(rows: &[&RopeRow], error: f64) -> Option<f64> {
-    let mut raw: Vec<&&RopeRow> = rows.iter().filter(|r| r.smoothing == Smoothing::Polyline).collect();
+/// The cheapest raw rope whose `metric` reaches `level`, by linear interpolation of cost
+/// between the raw ropes on either side; `None` if no raw rope up to the largest reaches it.
+fn raw_cost_at(rows: &[&RopeRow], level: f64, metric: fn(&RopeRow) -> f64) -> Option<f64> {
+    let mut raw: Vec<&&RopeRow> = rows
+        .iter()
+        .filter(|r| r.smoothing == Smoothing::Polyline)
+        .collect();
     raw.sort_by_key(|r| r.n);
-    let hit = raw.iter().position(|r| r.error <= error)?;
+    let hit = raw.iter().position(|r| metric(r) <= level)?;
     if hit == 0 {
         return Some(raw[0].ns);
     }
     let (a, b) = (raw[hit - 1], raw[hit]);
-    let f = ((a.error - error) / (a.error - b.error)).clamp(0.0, 1.0);
+    let f = ((metric(a) - level) / (metric(a) - metric(b))).clamp(0.0, 1.0);
     Some(a.ns + f * (b.ns - a.ns))
 }
 
@@ -199,45 +218,118 @@ fn run_ropes(run: &mut Run) -> String {
     let mut best_ratio = 0.0f64;
     for scene in ["rest", "swing"] {
         let scene_rows: Vec<&RopeRow> = rows.iter().filter(|r| r.scene == scene).collect();
-        let series: Vec<Series> = [Smoothing::Bezier, Smoothing::BSpline, Smoothing::CatmullRom, Smoothing::Polyline]
-            .iter()
-            .map(|&s| {
-                let mut pts: Vec<(f64, f64)> = scene_rows.iter().filter(|r| r.smoothing == s).map(|r| (r.ns, r.error)).collect();
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                Series::line(smoothing_name(s), pts)
-            })
-            .collect();
+        let series: Vec<Series> = [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::Polyline,
+        ]
+        .iter()
+        .map(|&s| {
+            let mut pts: Vec<(f64, f64)> = scene_rows
+                .iter()
+                .filter(|r| r.smoothing == s)
+                .map(|r| (r.ns, r.error))
+                .collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            Series::line(smoothing_name(s), pts)
+        })
+        .collect();
         let file = format!("ropes_{scene}.svg");
-        let title = format!("Ropes of 4 to 60 particles ({scene}): cost per frame against shape error vs a 200-particle rope");
-        chart(&run.path(&file), &title, "ns per frame (f32 step at 60 Hz + 64 drawn points)", "shape error (px, Hausdorff)", &series, true);
-        text.push_str(&format!("![ropes {scene}]({file})\n\n| {scene}: 8 particles | shape error px | ns per frame | raw rope at that error, ns | speed ratio |\n|---|---|---|---|---|\n"));
+        let title = format!(
+            "Ropes of 4 to 60 particles ({scene}): cost per frame against shape error vs a 200-particle rope"
+        );
+        chart(
+            &run.path(&file),
+            &title,
+            "ns per frame (f32 step at 60 Hz + 64 drawn points)",
+            "shape error (px, Hausdorff)",
+            &series,
+            true,
+        );
+        text.push_str(&format!(
+            "![ropes {scene}]({file})\n\n| {scene}: 8 particles | ns per frame | shape error px | raw rope at that error, ns | ratio | sharpest corner | raw rope that smooth, ns | ratio |\n|---|---|---|---|---|---|---|---|\n"
+        ));
+        let raw8 = scene_rows
+            .iter()
+            .find(|r| r.n == 8 && r.smoothing == Smoothing::Polyline);
         for s in [Smoothing::Bezier, Smoothing::BSpline, Smoothing::CatmullRom] {
-            let Some(r8) = scene_rows.iter().find(|r| r.n == 8 && r.smoothing == s) else { continue };
-            let raw = raw_cost_at(&scene_rows, r8.error);
-            let ratio = raw.map(|c| c / r8.ns);
+            let Some(r8) = scene_rows.iter().find(|r| r.n == 8 && r.smoothing == s) else {
+                continue;
+            };
+            let by_error = raw_cost_at(&scene_rows, r8.error, |r| r.error);
+            let by_corner = raw_cost_at(&scene_rows, r8.corner, |r| r.corner);
+            let ratio = by_error.map(|c| c / r8.ns);
             if let Some(x) = ratio {
                 best_ratio = best_ratio.max(x);
             }
+            let show = |c: Option<f64>| c.map_or("none up to 60".into(), |c| format!("{c:.0}"));
+            let times = |c: Option<f64>| {
+                c.map_or("> 60 particles".into(), |c| format!("{:.1}×", c / r8.ns))
+            };
             text.push_str(&format!(
-                "| {} | {} | {:.0} | {} | {} |\n",
+                "| {} | {:.0} | {} | {} | {} | {:.1}° | {} | {} |\n",
                 smoothing_name(s),
-                num(r8.error),
                 r8.ns,
-                raw.map_or("no raw rope up to 60 reaches it".into(), |c| format!("{c:.0}")),
-                ratio.map_or("—".into(), |x| format!("{x:.1}×"))
+                num(r8.error),
+                show(by_error),
+                times(by_error),
+                r8.corner,
+                show(by_corner),
+                times(by_corner)
+            ));
+        }
+        if let Some(r) = raw8 {
+            text.push_str(&format!(
+                "| raw polyline (8) | {:.0} | {} | | | {:.1}° | | |\n",
+                r.ns,
+                num(r.error),
+                r.corner
             ));
         }
         text.push('\n');
     }
     let csv_rows: Vec<Vec<String>> = rows
         .iter()
-        .map(|r| vec![r.scene.into(), r.n.to_string(), smoothing_name(r.smoothing).into(), format!("{:.0}", r.ns), format!("{:.4e}", r.error)])
+        .map(|r| {
+            vec![
+                r.scene.into(),
+                r.n.to_string(),
+                smoothing_name(r.smoothing).into(),
+                format!("{:.0}", r.ns),
+                format!("{:.4e}", r.error),
+                format!("{:.2}", r.corner),
+            ]
+        })
         .collect();
-    csv(&run.path("ropes.csv"), &["scene", "particles", "drawing", "ns_per_frame", "shape_error_px"], &csv_rows);
-    run.target("Dunas rope at least 4× cheaper per frame than the raw rope reaching the same shape error", format!("best 8-particle ratio {best_ratio:.1}×"), best_ratio >= 4.0);
-    let r8 = rows.iter().find(|r| r.n == 8 && r.smoothing == Smoothing::BSpline && r.scene == "swing").map_or(f64::NAN, |r| r.ns);
+    csv(
+        &run.path("ropes.csv"),
+        &[
+            "scene",
+            "particles",
+            "drawing",
+            "ns_per_frame",
+            "shape_error_px",
+            "sharpest_corner_deg",
+        ],
+        &csv_rows,
+    );
+    run.target("Dunas rope at least 4× cheaper per frame than the raw rope reaching the same shape error", format!("best 8-particle ratio {best_ratio:.1}×"), best_ratio >= 4.0,
+        "measured by shape error, a raw rope with about twice the particles is as close to the fine rope and cheaper: \
+         the smoothed curve departs from the true shape (a B-spline cuts inside the particles, Catmull-Rom overshoots) \
+         as much as a finer polyline does. What the smoothing buys is looks: see the sharpest-corner columns, where \
+         no raw rope up to 60 particles is as smooth as the 8-particle B-spline");
+    let r8 = rows
+        .iter()
+        .find(|r| r.n == 8 && r.smoothing == Smoothing::BSpline && r.scene == "swing")
+        .map_or(f64::NAN, |r| r.ns);
     let per_budget = 16.6e6 / r8;
-    run.target("at least 1000 rope frames per 16.6 ms on one core (8 particles, B-spline, 64 points)", format!("{per_budget:.0} frames"), per_budget >= 1000.0);
+    run.target(
+        "at least 1000 rope frames per 16.6 ms on one core (8 particles, B-spline, 64 points)",
+        format!("{per_budget:.0} frames"),
+        per_budget >= 1000.0,
+        "",
+    );
     text
 }
 
@@ -248,9 +340,25 @@ const CLOTH_DRAWN: usize = 24;
 
 /// A square cloth, horizontal, pinned at its four corners; settles into a bowl.
 fn cloth<const U: usize, const V: usize>(damping: f64) -> Cloth<Vec3<f64>, U, V> {
-    let settings = Settings { gravity: Vec3::new(0.0, -9.81, 0.0), damping, ..Settings::default() };
-    let m = [Material::new(800.0, 0.5).expect("valid"), Material::new(300.0, 0.2).expect("valid"), Material::new(50.0, 0.05).expect("valid")];
-    let mut c = Cloth::rectangle(Vec3::new(0.0, 0.0, 0.0), Vec3::new(CLOTH_SIZE, 0.0, 0.0), Vec3::new(0.0, 0.0, CLOTH_SIZE), 2.0, m, settings).expect("valid");
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping,
+        ..Settings::default()
+    };
+    let m = [
+        Material::new(800.0, 0.5).expect("valid"),
+        Material::new(300.0, 0.2).expect("valid"),
+        Material::new(50.0, 0.05).expect("valid"),
+    ];
+    let mut c = Cloth::rectangle(
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(CLOTH_SIZE, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, CLOTH_SIZE),
+        2.0,
+        m,
+        settings,
+    )
+    .expect("valid");
     for k in [0, U - 1, (V - 1) * U, V * U - 1] {
         c.set_inv_mass(k, 0.0).expect("in range");
     }
@@ -258,12 +366,18 @@ fn cloth<const U: usize, const V: usize>(damping: f64) -> Cloth<Vec3<f64>, U, V>
 }
 
 /// Points of the drawn surface: the patch sampled on a grid, or the raw particles.
-fn cloth_points<const U: usize, const V: usize>(c: &Cloth<Vec3<f64>, U, V>, smoothed: bool) -> Vec<Vec3<f64>> {
+fn cloth_points<const U: usize, const V: usize>(
+    c: &Cloth<Vec3<f64>, U, V>,
+    smoothed: bool,
+) -> Vec<Vec3<f64>> {
     if !smoothed {
         return c.positions().to_vec();
     }
     let mut out = vec![Vec3::default(); CLOTH_DRAWN * CLOTH_DRAWN];
-    c.patch().expect("in range").sample_grid(CLOTH_DRAWN, CLOTH_DRAWN, &mut out).expect("buffer");
+    c.patch()
+        .expect("in range")
+        .sample_grid(CLOTH_DRAWN, CLOTH_DRAWN, &mut out)
+        .expect("buffer");
     out
 }
 
@@ -275,9 +389,16 @@ fn densify(p: &[Vec3<f64>], nu: usize, nv: usize) -> Vec<Vec3<f64>> {
     for j in 0..(nv - 1) * per + 1 {
         for i in 0..(nu - 1) * per + 1 {
             let (ci, cj) = ((i / per).min(nu - 2), (j / per).min(nv - 2));
-            let (s, t) = ((i - ci * per) as f64 / per as f64, (j - cj * per) as f64 / per as f64);
+            let (s, t) = (
+                (i - ci * per) as f64 / per as f64,
+                (j - cj * per) as f64 / per as f64,
+            );
             let q = |a: usize, b: usize| p[b * nu + a];
-            out.push(q(ci, cj).lerp(q(ci + 1, cj), s).lerp(q(ci, cj + 1).lerp(q(ci + 1, cj + 1), s), t));
+            out.push(
+                q(ci, cj)
+                    .lerp(q(ci + 1, cj), s)
+                    .lerp(q(ci, cj + 1).lerp(q(ci + 1, cj + 1), s), t),
+            );
         }
     }
     out
@@ -285,23 +406,51 @@ fn densify(p: &[Vec3<f64>], nu: usize, nv: usize) -> Vec<Vec3<f64>> {
 
 fn cloud_distance(a: &[Vec3<f64>], b: &[Vec3<f64>]) -> f64 {
     let one = |x: &[Vec3<f64>], y: &[Vec3<f64>]| {
-        x.iter().map(|&p| y.iter().map(|&q| (p - q).length()).fold(f64::INFINITY, f64::min)).fold(0.0, f64::max)
+        x.iter()
+            .map(|&p| {
+                y.iter()
+                    .map(|&q| (p - q).length())
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max)
     };
     one(a, b).max(one(b, a))
 }
 
 fn cloth_frame_ns<const U: usize, const V: usize>(run: &Run, smoothed: bool) -> f64 {
-    let settings = Settings { gravity: Vec3::new(0.0, -9.81f32, 0.0), damping: 0.1, ..Settings::default() };
-    let m = [Material::new(800.0f32, 0.5).expect("valid"), Material::new(300.0, 0.2).expect("valid"), Material::new(50.0, 0.05).expect("valid")];
-    let mut c: Cloth<Vec3<f32>, U, V> = Cloth::rectangle(Vec3::new(0.0, 0.0, 0.0), Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 10.0), 2.0, m, settings).expect("valid");
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81f32, 0.0),
+        damping: 0.1,
+        ..Settings::default()
+    };
+    let m = [
+        Material::new(800.0f32, 0.5).expect("valid"),
+        Material::new(300.0, 0.2).expect("valid"),
+        Material::new(50.0, 0.05).expect("valid"),
+    ];
+    let mut c: Cloth<Vec3<f32>, U, V> = Cloth::rectangle(
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 10.0),
+        2.0,
+        m,
+        settings,
+    )
+    .expect("valid");
     for k in [0, U - 1, (V - 1) * U, V * U - 1] {
         c.set_inv_mass(k, 0.0).expect("in range");
     }
-    let (mut pos, mut nor) = (vec![Vec3::<f32>::default(); CLOTH_DRAWN * CLOTH_DRAWN], vec![Vec3::<f32>::default(); CLOTH_DRAWN * CLOTH_DRAWN]);
+    let (mut pos, mut nor) = (
+        vec![Vec3::<f32>::default(); CLOTH_DRAWN * CLOTH_DRAWN],
+        vec![Vec3::<f32>::default(); CLOTH_DRAWN * CLOTH_DRAWN],
+    );
     median_ns(run.reps().min(11), 5, || {
         c.step(DT as f32).expect("stable");
         if smoothed {
-            std::hint::black_box(c.sample(CLOTH_DRAWN, CLOTH_DRAWN, &mut pos, &mut nor).expect("buffer"));
+            std::hint::black_box(
+                c.sample(CLOTH_DRAWN, CLOTH_DRAWN, &mut pos, &mut nor)
+                    .expect("buffer"),
+            );
         }
     })
 }
@@ -314,8 +463,15 @@ struct ClothRow {
     error: f64,
 }
 
-fn cloth_rows<const U: usize>(run: &Run, references: &[Vec<Vec3<f64>>; 2], rows: &mut Vec<ClothRow>) {
-    for (s, (scene, seconds, damping)) in [("rest", 8.0, 2.0), ("swing", 0.4, 0.1)].into_iter().enumerate() {
+fn cloth_rows<const U: usize>(
+    run: &Run,
+    references: &[Vec<Vec3<f64>>; 2],
+    rows: &mut Vec<ClothRow>,
+) {
+    for (s, (scene, seconds, damping)) in [("rest", 8.0, 2.0), ("swing", 0.4, 0.1)]
+        .into_iter()
+        .enumerate()
+    {
         let mut c = cloth::<U, U>(damping);
         for _ in 0..(seconds / DT) as usize {
             c.step(DT).expect("stable");
@@ -324,7 +480,13 @@ fn cloth_rows<const U: usize>(run: &Run, references: &[Vec<Vec3<f64>>; 2], rows:
             let n = if smoothed { CLOTH_DRAWN } else { U };
             let error = cloud_distance(&densify(&cloth_points(&c, smoothed), n, n), &references[s]);
             let ns = cloth_frame_ns::<U, U>(run, smoothed);
-            rows.push(ClothRow { n: U, smoothed, scene, ns, error });
+            rows.push(ClothRow {
+                n: U,
+                smoothed,
+                scene,
+                ns,
+                error,
+            });
         }
     }
 }
@@ -351,19 +513,60 @@ fn run_cloth(run: &mut Run) -> String {
     for scene in ["rest", "swing"] {
         let mut series = Vec::new();
         for smoothed in [true, false] {
-            let mut pts: Vec<(f64, f64)> = rows.iter().filter(|r| r.scene == scene && r.smoothed == smoothed).map(|r| (r.ns, r.error)).collect();
+            let mut pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.scene == scene && r.smoothed == smoothed)
+                .map(|r| (r.ns, r.error))
+                .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            series.push(Series::line(if smoothed { "Bézier patch (24×24 drawn)" } else { "raw grid" }, pts));
+            series.push(Series::line(
+                if smoothed {
+                    "Bézier patch (24×24 drawn)"
+                } else {
+                    "raw grid"
+                },
+                pts,
+            ));
         }
         let file = format!("cloth_{scene}.svg");
-        chart(&run.path(&file), &format!("Cloth 4×4 to 20×20 ({scene}): cost per frame against shape error vs 32×32"), "ns per frame (f32 step at 60 Hz + drawing)", "shape error (m)", &series, true);
-        let s8 = rows.iter().find(|r| r.scene == scene && r.smoothed && r.n == 8);
-        let mut raw: Vec<&ClothRow> = rows.iter().filter(|r| r.scene == scene && !r.smoothed).collect();
+        chart(
+            &run.path(&file),
+            &format!("Cloth 4×4 to 20×20 ({scene}): cost per frame against shape error vs 32×32"),
+            "ns per frame (f32 step at 60 Hz + drawing)",
+            "shape error (m)",
+            &series,
+            true,
+        );
+        let s8 = rows
+            .iter()
+            .find(|r| r.scene == scene && r.smoothed && r.n == 8);
+        let mut raw: Vec<&ClothRow> = rows
+            .iter()
+            .filter(|r| r.scene == scene && !r.smoothed)
+            .collect();
         raw.sort_by_key(|r| r.n);
         let (line, ratio) = match s8 {
             Some(s8) => match raw.iter().find(|r| r.error <= s8.error) {
-                Some(r) => (format!("8×8 smoothed: {} m at {:.0} ns; the first raw grid as good is {}×{} at {:.0} ns: {:.1}×", num(s8.error), s8.ns, r.n, r.n, r.ns, r.ns / s8.ns), r.ns / s8.ns),
-                None => (format!("8×8 smoothed: {} m at {:.0} ns; no raw grid up to 20×20 is as good", num(s8.error), s8.ns), f64::NAN),
+                Some(r) => (
+                    format!(
+                        "8×8 smoothed: {} m at {:.0} ns; the first raw grid as good is {}×{} at {:.0} ns: {:.1}×",
+                        num(s8.error),
+                        s8.ns,
+                        r.n,
+                        r.n,
+                        r.ns,
+                        r.ns / s8.ns
+                    ),
+                    r.ns / s8.ns,
+                ),
+                None => (
+                    format!(
+                        "8×8 smoothed: {} m at {:.0} ns; no raw grid up to 20×20 is as good",
+                        num(s8.error),
+                        s8.ns
+                    ),
+                    f64::NAN,
+                ),
             },
             None => (String::new(), f64::NAN),
         };
@@ -372,12 +575,38 @@ fn run_cloth(run: &mut Run) -> String {
         }
         text.push_str(&format!("![cloth {scene}]({file})\n\n{line}\n\n"));
     }
-    let csv_rows: Vec<Vec<String>> = rows.iter().map(|r| vec![r.scene.into(), r.n.to_string(), if r.smoothed { "patch" } else { "raw" }.into(), format!("{:.0}", r.ns), format!("{:.4e}", r.error)]).collect();
-    csv(&run.path("cloth.csv"), &["scene", "grid", "drawing", "ns_per_frame", "shape_error_m"], &csv_rows);
-    run.target("Dunas sail at least 5× cheaper per frame than the raw grid reaching the same shape error", format!("best 8×8 ratio {best:.1}×"), best >= 5.0);
-    let s8 = rows.iter().find(|r| r.n == 8 && r.smoothed && r.scene == "swing").map_or(f64::NAN, |r| r.ns);
+    let csv_rows: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.scene.into(),
+                r.n.to_string(),
+                if r.smoothed { "patch" } else { "raw" }.into(),
+                format!("{:.0}", r.ns),
+                format!("{:.4e}", r.error),
+            ]
+        })
+        .collect();
+    csv(
+        &run.path("cloth.csv"),
+        &["scene", "grid", "drawing", "ns_per_frame", "shape_error_m"],
+        &csv_rows,
+    );
+    run.target("Dunas sail at least 5× cheaper per frame than the raw grid reaching the same shape error", format!("best 8×8 ratio {best:.1}×"), best >= 5.0,
+        "a Bézier patch over all the particles shrinks the bowl (it passes through the corners only), and drawing \
+         24×24 points with normals costs more than stepping the cloth: a raw 6×6 grid is as close and far cheaper. \
+         A patch that interpolates the particles would close the shape gap");
+    let s8 = rows
+        .iter()
+        .find(|r| r.n == 8 && r.smoothed && r.scene == "swing")
+        .map_or(f64::NAN, |r| r.ns);
     let per = 16.6e6 / s8;
-    run.target("at least 100 sail frames per 16.6 ms on one core (8×8, 24×24 drawn with normals)", format!("{per:.0} frames"), per >= 100.0);
+    run.target(
+        "at least 100 sail frames per 16.6 ms on one core (8×8, 24×24 drawn with normals)",
+        format!("{per:.0} frames"),
+        per >= 100.0,
+        "",
+    );
     text
 }
 

@@ -13,7 +13,10 @@ const INTEGRATORS: [(&str, Integrator); 6] = [
     ("SymplecticEuler", Integrator::SymplecticEuler),
     ("Verlet", Integrator::Verlet),
     ("Rk4", Integrator::Rk4),
-    ("ImplicitEuler(16)", Integrator::ImplicitEuler { iterations: 16 }),
+    (
+        "ImplicitEuler(16)",
+        Integrator::ImplicitEuler { iterations: 16 },
+    ),
     ("Xpbd(4)", Integrator::Xpbd { substeps: 4 }),
 ];
 const MAX_H: f64 = 1.0;
@@ -24,8 +27,13 @@ fn bounded(integrator: Integrator, k: f64, h: f64, steps: usize) -> bool {
     let pos = [Vec2::new(0.0, 0.0), Vec2::new(100.1, 0.0)];
     let mut springs = Springs::<f64, 1>::new(Material::new(k, 0.0).expect("valid"));
     springs.connect_with_rest(2, 0, 1, 100.0).expect("valid");
-    let settings = Settings { integrator, bounds: 150.0, ..Settings::default() };
-    let mut sys: MassSpring<Vec2<f64>, Line<2>, _> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
+    let settings = Settings {
+        integrator,
+        bounds: 150.0,
+        ..Settings::default()
+    };
+    let mut sys: MassSpring<Vec2<f64>, Line<2>, _> =
+        MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     (0..steps).all(|_| sys.step_once(h, ()).is_ok()) && (sys.positions()[1].x - 100.0).abs() < 1.0
 }
 
@@ -41,13 +49,21 @@ fn largest_stable(integrator: Integrator, k: f64, steps: usize) -> f64 {
     }
     for _ in 0..30 {
         let mid = (lo * hi).sqrt();
-        if bounded(integrator, k, mid, steps) { lo = mid } else { hi = mid }
+        if bounded(integrator, k, mid, steps) {
+            lo = mid
+        } else {
+            hi = mid
+        }
     }
     lo
 }
 
 pub fn run(run: &mut Run) {
-    let ks: Vec<f64> = if run.quick { vec![1e2, 1e4, 1e6] } else { (0..13).map(|i| 10f64.powf(1.0 + 0.5 * i as f64)).collect() };
+    let ks: Vec<f64> = if run.quick {
+        vec![1e2, 1e4, 1e6]
+    } else {
+        (0..13).map(|i| 10f64.powf(1.0 + 0.5 * i as f64)).collect()
+    };
     let steps = if run.quick { 300 } else { 2000 };
     let mut rows = Vec::new();
     let mut series = Vec::new();
@@ -62,8 +78,14 @@ pub fn run(run: &mut Run) {
             .collect();
         series.push(Series::dots(name, pts));
     }
-    for (name, limit) in [("bound ω·h = 2", 2.0), ("bound ω·h = 2√2", 2.0 * 2f64.sqrt())] {
-        series.push(Series::line(name, ks.iter().map(|&k| (k, limit / k.sqrt())).collect()));
+    for (name, limit) in [
+        ("bound ω·h = 2", 2.0),
+        ("bound ω·h = 2√2", 2.0 * 2f64.sqrt()),
+    ] {
+        series.push(Series::line(
+            name,
+            ks.iter().map(|&k| (k, limit / k.sqrt())).collect(),
+        ));
     }
     chart(
         &run.path("stability.svg"),
@@ -73,21 +95,38 @@ pub fn run(run: &mut Run) {
         &series,
         true,
     );
-    csv(&run.path("stability.csv"), &["integrator", "stiffness", "largest_stable_h_s"], &rows);
+    csv(
+        &run.path("stability.csv"),
+        &["integrator", "stiffness", "largest_stable_h_s"],
+        &rows,
+    );
     // How far each explicit method's measured limit sits from its documented bound.
     let mut notes = Vec::new();
-    for (name, limit) in [("SymplecticEuler", 2.0), ("Verlet", 2.0), ("Rk4", 2.0 * 2f64.sqrt())] {
+    for (name, limit) in [
+        ("SymplecticEuler", 2.0),
+        ("Verlet", 2.0),
+        ("Rk4", 2.0 * 2f64.sqrt()),
+    ] {
         let worst = rows
             .iter()
             .filter(|r| r[0] == name)
             .map(|r| {
-                let (k, h): (f64, f64) = (r[1].parse().unwrap_or(f64::NAN), r[2].parse().unwrap_or(f64::NAN));
+                let (k, h): (f64, f64) = (
+                    r[1].parse().unwrap_or(f64::NAN),
+                    r[2].parse().unwrap_or(f64::NAN),
+                );
                 (h * k.sqrt() / limit - 1.0).abs()
             })
             .fold(0.0, f64::max);
-        notes.push(format!("{name} within {:.1}% of ω·h = {limit:.3}", worst * 100.0));
+        notes.push(format!(
+            "{name} within {:.1}% of ω·h = {limit:.3}",
+            worst * 100.0
+        ));
     }
-    let explicit_zero = rows.iter().filter(|r| r[0] == "ExplicitEuler").all(|r| r[2].parse::<f64>().unwrap_or(1.0) < 1e-3);
+    let explicit_zero = rows
+        .iter()
+        .filter(|r| r[0] == "ExplicitEuler")
+        .all(|r| r[2].parse::<f64>().unwrap_or(1.0) < 1e-3);
     run.section(
         "(d) Stability map",
         &format!(

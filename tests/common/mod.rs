@@ -150,3 +150,50 @@ pub fn jacobi_eigen<const N: usize>(mut a: [[f64; N]; N]) -> ([f64; N], [[f64; N
     (core::array::from_fn(|i| a[i][i]), v)
 }
 
+/// Distance from `p` to the polyline `line`.
+pub fn to_polyline(p: Vec2<f64>, line: &[Vec2<f64>]) -> f64 {
+    line.windows(2)
+        .map(|w| {
+            let d = w[1] - w[0];
+            let len2 = d.dot(d);
+            let t = if len2 > 0.0 {
+                ((p - w[0]).dot(d) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p - (w[0] + d * t)).length()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Symmetric Hausdorff distance between two polylines (each densified to 256 points).
+pub fn hausdorff(a: &[Vec2<f64>], b: &[Vec2<f64>]) -> f64 {
+    let dense = |l: &[Vec2<f64>]| -> Vec<Vec2<f64>> {
+        let per = (256 / (l.len() - 1)).max(1);
+        let mut out = Vec::new();
+        for w in l.windows(2) {
+            for k in 0..per {
+                out.push(w[0].lerp(w[1], k as f64 / per as f64));
+            }
+        }
+        out.push(l[l.len() - 1]);
+        out
+    };
+    let (da, db) = (dense(a), dense(b));
+    let one =
+        |x: &[Vec2<f64>], y: &[Vec2<f64>]| x.iter().map(|&p| to_polyline(p, y)).fold(0.0, f64::max);
+    one(&da, b).max(one(&db, a))
+}
+
+/// The sharpest corner of a drawn polyline: the largest turning angle (degrees) between
+/// consecutive segments. What the eye sees as a kink, whatever the shape error.
+pub fn sharpest_corner(line: &[Vec2<f64>]) -> f64 {
+    line.windows(3)
+        .filter_map(|w| {
+            let (a, b) = (w[1] - w[0], w[2] - w[1]);
+            let (la, lb) = (a.length(), b.length());
+            (la > 1e-9 && lb > 1e-9)
+                .then(|| (a.dot(b) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees())
+        })
+        .fold(0.0, f64::max)
+}

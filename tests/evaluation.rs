@@ -1,0 +1,235 @@
+//! The accuracy statements of the README and of `docs/summary.md` (never its timings), held
+//! on smaller versions of the same scenes so that a change that breaks them fails here.
+#![cfg(feature = "std")]
+
+mod common;
+
+use common::{ExactCurve, Rng, hausdorff, sharpest_corner};
+use dunas::sampler::{BernsteinTable, DeCasteljau, Sampler, Subdivide};
+use dunas::smooth::Smoothing;
+use dunas::spring::Material;
+use dunas::system::Settings;
+use dunas::{Bezier, Cloth, Error, Q16, Rope, Vec2, Vec3, lod};
+
+/// README "Choosing a sampler": the table, de Casteljau and subdivision keep f32 within
+/// 0.01 px at 10⁴ px, degree 3 and 7, 1024 points.
+#[test]
+fn stable_f32_samplers_stay_within_a_hundredth_of_a_pixel() {
+    fn worst<const N: usize>(sampler: &impl Sampler<Vec2<f32>, N>, len: usize) -> f64 {
+        let mut rng = Rng(0x5eed ^ (N as u64) << 32 ^ 10_000);
+        let mut buf = vec![Vec2::default(); len];
+        (0..40)
+            .map(|_| {
+                let c = ExactCurve::<f32, N>::new(rng.grid_points(10_000));
+                let n = sampler.sample(&c.curve, &mut buf).unwrap();
+                c.max_error(&buf[..n], (n - 1) as u64)
+            })
+            .fold(0.0, f64::max)
+    }
+    for e in [
+        worst::<4>(&BernsteinTable::<f32, 4, 1024>::new(), 1024),
+        worst::<8>(&BernsteinTable::<f32, 8, 1024>::new(), 1024),
+        worst::<4>(&DeCasteljau, 1024),
+        worst::<8>(&DeCasteljau, 1024),
+        worst::<4>(&Subdivide::default(), 1025),
+        worst::<8>(&Subdivide::default(), 1025),
+    ] {
+        assert!(e <= 0.01, "{e}");
+    }
+}
+
+/// Summary (f): dunas flattens with exactly lyon_geom's (Wang's) count; kurbo needs about half.
+#[test]
+fn flattening_counts_against_lyon_and_kurbo() {
+    use kurbo::{CubicBez, PathEl, Point as KPoint};
+    use lyon_geom::{CubicBezierSegment, point};
+    let mut rng = Rng(0xf1a7);
+    let (mut ours, mut theirs) = (0usize, 0usize);
+    for _ in 0..100 {
+        let p: [[f64; 2]; 4] =
+            core::array::from_fn(|_| [rng.grid(200) as f64 / 16.0, rng.grid(200) as f64 / 16.0]);
+        let c = Bezier::new(p.map(|[x, y]| Vec2::new(x, y))).unwrap();
+        let n = lod::segments(&c, 0.25).unwrap();
+        let l = CubicBezierSegment {
+            from: point(p[0][0], p[0][1]),
+            ctrl1: point(p[1][0], p[1][1]),
+            ctrl2: point(p[2][0], p[2][1]),
+            to: point(p[3][0], p[3][1]),
+        };
+        let mut lyon = 0;
+        l.for_each_flattened(0.25, &mut |_| lyon += 1);
+        assert_eq!(n, lyon, "Wang's count, as lyon_geom");
+        let k = |q: [f64; 2]| KPoint::new(q[0], q[1]);
+        let cubic = CubicBez::new(k(p[0]), k(p[1]), k(p[2]), k(p[3]));
+        let mut kurbo = 0;
+        kurbo::flatten(
+            [
+                PathEl::MoveTo(cubic.p0),
+                PathEl::CurveTo(cubic.p1, cubic.p2, cubic.p3),
+            ],
+            0.25,
+            |el| {
+                if matches!(el, PathEl::LineTo(_)) {
+                    kurbo += 1;
+                }
+            },
+        );
+        ours += n;
+        theirs += kurbo;
+    }
+    let ratio = ours as f64 / theirs as f64;
+    assert!(
+        (1.5..2.3).contains(&ratio),
+        "dunas uses {ratio:.2}× kurbo's segments"
+    );
+}
+
+/// A rope pinned at both ends 50 px apart, settled; smoothed ropes calibrated to a drawn
+/// length of 70 first (summary (c), at rest).
+fn rest_rope<const N: usize, const CAP: usize>(smoothing: Smoothing) -> Vec<Vec2<f64>> {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -200.0),
+        damping: 3.0,
+        ..Settings::default()
+    };
+    let s = (N - 1) as f64;
+    let mut r: Rope<Vec2<f64>, N, CAP> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        Material::new(1500.0 * s, 0.5 * s).unwrap(),
+        settings,
+    )
+    .unwrap();
+    r.set_inv_mass(N - 1, 0.0).unwrap();
+    r.set_position(N - 1, Vec2::new(50.0, 0.0)).unwrap();
+    if smoothing != Smoothing::Polyline {
+        r.calibrate_length(smoothing, 70.0, 1.0 / 60.0, 120)
+            .unwrap();
+    }
+    for _ in 0..360 {
+        r.step(1.0 / 60.0).unwrap();
+    }
+    if smoothing == Smoothing::Polyline {
+        return r.positions().to_vec();
+    }
+    let mut out = vec![Vec2::default(); 64];
+    let n = r.sample(smoothing, &mut out).unwrap();
+    out.truncate(n);
+    out
+}
+
+/// Summary (c), ropes at rest: the 8-particle B-spline is closer to the fine rope than the raw
+/// 8-particle polyline, about as close as a raw rope twice as fine, and far smoother than any.
+#[test]
+fn smoothing_eight_particles_buys_smoothness_more_than_shape() {
+    let reference = rest_rope::<120, 119>(Smoothing::Polyline);
+    let bspline = rest_rope::<8, 7>(Smoothing::BSpline);
+    let raw8 = rest_rope::<8, 7>(Smoothing::Polyline);
+    let raw16 = rest_rope::<16, 15>(Smoothing::Polyline);
+    let raw60 = rest_rope::<60, 59>(Smoothing::Polyline);
+    let (e_b, e_8, e_16) = (
+        hausdorff(&bspline, &reference),
+        hausdorff(&raw8, &reference),
+        hausdorff(&raw16, &reference),
+    );
+    assert!(e_b < e_8, "B-spline {e_b} vs raw 8 {e_8}");
+    assert!(
+        e_16 < e_8 && e_16 < 2.0 * e_b,
+        "a raw rope twice as fine is about as close: {e_16} vs {e_b}"
+    );
+    let (c_b, c_8, c_60) = (
+        sharpest_corner(&bspline),
+        sharpest_corner(&raw8),
+        sharpest_corner(&raw60),
+    );
+    assert!(
+        c_b < 5.0 && c_8 > 20.0,
+        "corners: smoothed {c_b}°, raw 8 {c_8}°"
+    );
+    assert!(
+        c_60 > c_b,
+        "even 60 raw particles show a sharper corner: {c_60}° vs {c_b}°"
+    );
+}
+
+/// Summary (c), cloth: a Bézier patch over an 8×8 bowl shrinks it, so it is farther from a
+/// fine cloth than the raw 8×8 grid.
+#[test]
+fn a_bezier_patch_shrinks_a_sagging_cloth() {
+    fn bowl<const U: usize>() -> Cloth<Vec3<f64>, U, U> {
+        let settings = Settings {
+            gravity: Vec3::new(0.0, -9.81, 0.0),
+            damping: 2.0,
+            ..Settings::default()
+        };
+        let m = [
+            Material::new(800.0, 0.5).unwrap(),
+            Material::new(300.0, 0.2).unwrap(),
+            Material::new(50.0, 0.05).unwrap(),
+        ];
+        let mut c = Cloth::rectangle(
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(10.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 10.0),
+            2.0,
+            m,
+            settings,
+        )
+        .unwrap();
+        for k in [0, U - 1, (U - 1) * U, U * U - 1] {
+            c.set_inv_mass(k, 0.0).unwrap();
+        }
+        for _ in 0..480 {
+            c.step(1.0 / 60.0).unwrap();
+        }
+        c
+    }
+    let lowest = |p: &[Vec3<f64>]| p.iter().map(|q| q.y).fold(f64::INFINITY, f64::min);
+    let fine = bowl::<16>();
+    let coarse = bowl::<8>();
+    let mut patch = [Vec3::default(); 24 * 24];
+    coarse
+        .patch()
+        .unwrap()
+        .sample_grid(24, 24, &mut patch)
+        .unwrap();
+    let (sag_fine, sag_raw, sag_patch) = (
+        lowest(fine.positions()),
+        lowest(coarse.positions()),
+        lowest(&patch),
+    );
+    eprintln!("lowest point: fine {sag_fine}, raw 8×8 {sag_raw}, patch {sag_patch}");
+    assert!(
+        (sag_raw - sag_fine).abs() < 0.15 * sag_fine.abs(),
+        "raw 8×8 sags like the fine cloth: {sag_raw} vs {sag_fine}"
+    );
+    let (off_raw, off_patch) = ((sag_raw - sag_fine).abs(), (sag_patch - sag_fine).abs());
+    assert!(
+        sag_patch > sag_raw && off_patch > 1.5 * off_raw,
+        "the patch sags less: {sag_patch} vs {sag_raw}"
+    );
+}
+
+/// Summary (e): Q16.16 subdivision keeps a constant error up to its range, then refuses.
+#[test]
+fn q16_error_stays_flat_until_the_range_ends() {
+    for scale in [1i64, 100, 10_000, 16_000] {
+        let grid = [
+            [-scale, 0],
+            [-scale / 3, scale],
+            [scale / 2, -scale],
+            [scale, scale / 2],
+        ]
+        .map(|[x, y]| [x * common::DENOM, y * common::DENOM]);
+        let c = ExactCurve::<Q16, 4>::new(grid);
+        let mut out = [Vec2::<Q16>::default(); 65];
+        let n = Subdivide::default().sample(&c.curve, &mut out).unwrap();
+        assert!(c.max_error(&out[..n], 64) < 3e-4, "scale {scale}");
+    }
+    let far = [
+        Vec2::<Q16>::from_f64(0.0, 0.0),
+        Vec2::from_f64(17_000.0, 0.0),
+    ];
+    assert_eq!(Bezier::new(far).err(), Some(Error::OutOfRange));
+}
