@@ -62,7 +62,7 @@ impl<P: Point> Aabb<P> {
     }
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

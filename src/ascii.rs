@@ -173,7 +173,7 @@ impl<'a> Canvas<'a> {
     }
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

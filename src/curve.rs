@@ -251,7 +251,7 @@ pub(crate) fn degree_scalar<S: Scalar>(n: usize) -> S {
     S::from_i16(n.min(i16::MAX as usize) as i16)
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

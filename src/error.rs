@@ -79,7 +79,7 @@ impl fmt::Display for Error {
     }
 }
 
-#[cfg(feature = "std")]
+#[cfg(dunas_std)]
 impl std::error::Error for Error {}
 
 /// Checks that every point is finite and inside the safe range.

@@ -195,7 +195,7 @@ impl<P: Point> ForceField<P> for AnchorSpring<P> {
     }
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

@@ -53,24 +53,26 @@
 //! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (at most 6.1% and 3.5% off, measured) |
 //! | `xml` | no | loading the thesis's scene and physics XML files (`xml` module; needs `std`) |
 //!
-//! `f32` and `f64` need `std` or `libm`; a build with neither and without `fixed` stops
-//! with a `compile_error!`. A `fixed`-only build has no floats at all.
+//! `f32` and `f64` need `std` or `libm`; a hosted build with neither and without `fixed`
+//! stops with a `compile_error!`. On bare-metal targets (`target_os = "none"`) float math
+//! always comes from `libm`, so the default features build for a microcontroller too.
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 // Numeric kernels index several arrays in step, as the formulas they implement do.
 #![allow(clippy::needless_range_loop)]
 
-#[cfg(any(feature = "std", test))]
+#[cfg(any(dunas_std, test))]
 extern crate std;
 
-#[cfg(not(any(feature = "std", feature = "libm", feature = "fixed")))]
+// `dunas_floats` (set by build.rs): std math on a hosted target, or libm.
+#[cfg(not(any(dunas_floats, feature = "fixed")))]
 compile_error!(
     "dunas needs a number format: enable `std` (default) or `libm` for f32/f64, \
      or `fixed` for Q16.16 (e.g. `--no-default-features --features libm`)"
 );
 
-#[cfg(any(feature = "std", feature = "libm"))]
+#[cfg(dunas_floats)]
 mod math;
 
 mod aabb;
@@ -93,7 +95,7 @@ pub mod smooth;
 pub mod spring;
 pub mod system;
 mod timestep;
-#[cfg(feature = "xml")]
+#[cfg(all(feature = "xml", dunas_std))]
 pub mod xml;
 
 pub use aabb::Aabb;

@@ -111,7 +111,7 @@ pub fn patch_segments<P: Point, const U: usize, const V: usize>(
     ))
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

@@ -1,9 +1,10 @@
 //! The one place where float math meets a backend.
 //!
-//! `std` wins when it is on; otherwise `libm`. Both are exact (correctly rounded sqrt).
+//! `std` wins on hosted targets with the `std` feature; otherwise `libm` (the `libm` feature,
+//! or any bare-metal target). Both are exact (correctly rounded sqrt). `build.rs` decides.
 //! `micromath` is only used by the `approx_*` functions, which callers choose explicitly.
 
-#[cfg(feature = "std")]
+#[cfg(dunas_std)]
 mod backend {
     #[inline]
     pub fn sqrt_f32(x: f32) -> f32 {
@@ -15,7 +16,7 @@ mod backend {
     }
 }
 
-#[cfg(all(not(feature = "std"), feature = "libm"))]
+#[cfg(not(dunas_std))]
 mod backend {
     #[inline]
     pub fn sqrt_f32(x: f32) -> f32 {

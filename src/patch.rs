@@ -225,7 +225,7 @@ pub fn strip_indices(nu: usize, nv: usize, out: &mut [u16]) -> Result<usize, Err
     Ok(k)
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Bezier;

@@ -258,7 +258,7 @@ macro_rules! impl_ops {
 impl_ops!(Vec2 { x, y }, 2, [0 => x, 1 => y]);
 impl_ops!(Vec3 { x, y, z }, 3, [0 => x, 1 => y, 2 => z]);
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
 

@@ -112,7 +112,7 @@ pub trait Scalar:
     }
 }
 
-#[cfg(any(feature = "std", feature = "libm"))]
+#[cfg(dunas_floats)]
 macro_rules! impl_float {
     ($t:ty, $sqrt:path, $range:expr, { $($extra:tt)* }) => {
         impl Scalar for $t {
@@ -182,7 +182,7 @@ macro_rules! impl_float {
     };
 }
 
-#[cfg(any(feature = "std", feature = "libm"))]
+#[cfg(dunas_floats)]
 impl_float!(f32, crate::math::sqrt_f32, 1e18, {
     #[inline]
     fn approx_sqrt(self) -> Self {
@@ -193,11 +193,11 @@ impl_float!(f32, crate::math::sqrt_f32, 1e18, {
         approx_f32::inv_sqrt(self)
     }
 });
-#[cfg(any(feature = "std", feature = "libm"))]
+#[cfg(dunas_floats)]
 impl_float!(f64, crate::math::sqrt_f64, 1e150, {});
 
 /// Fast approximate roots for `f32` (see the `micromath` feature).
-#[cfg(any(feature = "std", feature = "libm"))]
+#[cfg(dunas_floats)]
 mod approx_f32 {
     /// Approximate `sqrt`.
     #[inline]
@@ -219,7 +219,7 @@ mod approx_f32 {
     }
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
 

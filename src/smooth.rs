@@ -268,7 +268,7 @@ fn sample_polyline<P: Point, const K: usize>(p: &[P; K], out: &mut [P]) -> usize
     n
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

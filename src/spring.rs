@@ -341,7 +341,7 @@ impl<S: Scalar, const U: usize, const V: usize> Topology<S> for GridSprings<S, U
     }
 }
 
-#[cfg(all(test, any(feature = "std", feature = "libm")))]
+#[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
     use crate::Vec2;

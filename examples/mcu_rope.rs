@@ -1,0 +1,299 @@
+//! The rope game loop on a microcontroller: 8 particles, 600 steps at 60 Hz, the curve sampled
+//! every frame, in Q16.16 on a Cortex-M0 (no FPU) and in f32 on a Cortex-M4F.
+//!
+//! On the device (under QEMU, see `.cargo/config.toml`) it prints a final ASCII frame and
+//! `key=value` lines through semihosting, among them `checksum=` (a hash of every particle
+//! position after the last step) and `frame_instructions=` (one step plus one curve, counted
+//! exactly with SysTick under `-icount`), then exits with success, or failure on any error or
+//! panic:
+//!
+//! `cargo run --release --target thumbv6m-none-eabi --example mcu_rope` (Q16.16, micro:bit)
+//! `cargo run --release --target thumbv7em-none-eabihf --example mcu_rope` (f32, MPS2-AN386)
+//!
+//! On the host the same simulation runs with std and prints the same `checksum=` line:
+//! `cargo run --release --example mcu_rope` (Q16.16) or `... -- f32`.
+#![cfg_attr(target_os = "none", no_std)]
+#![cfg_attr(target_os = "none", no_main)]
+
+use dunas::ascii::{Canvas, View};
+use dunas::smooth::Smoothing;
+use dunas::spring::Material;
+use dunas::system::Settings;
+use dunas::{Error, Q16, Rope, Scalar, Vec2};
+
+const STEPS: usize = 600;
+/// 33 points: the largest dyadic count (2⁵ + 1) that Q16.16 samples exactly.
+const CURVE: usize = 33;
+pub const W: usize = 40;
+pub const H: usize = 14;
+
+/// Counts the instructions `f` takes (0 where nothing can count them).
+pub trait Meter {
+    fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32);
+}
+
+/// What a run reports.
+pub struct Report {
+    pub checksum: u32,
+    pub step_instructions: u32,
+    pub sample_instructions: u32,
+    pub substeps: u16,
+    pub frame: [u8; W * H],
+}
+
+/// FNV-1a over the raw bits of every coordinate: equal only for bit-identical states.
+fn checksum<S: Scalar>(points: &[Vec2<S>], bits: impl Fn(S) -> u32) -> u32 {
+    let mut h: u32 = 0x811c_9dc5;
+    for p in points {
+        for c in [p.x, p.y] {
+            for b in bits(c).to_le_bytes() {
+                h ^= b as u32;
+                h = h.wrapping_mul(0x0100_0193);
+            }
+        }
+    }
+    h
+}
+
+/// The catapult rope: pinned at the origin, a weight on its end, released 40° from hanging,
+/// in pixel units (y up). Everything else is the library's defaults.
+pub fn simulate<S: Scalar>(
+    meter: &mut impl Meter,
+    bits: impl Fn(S) -> u32,
+) -> Result<Report, Error> {
+    let px = |v: f64| S::from_f64(v);
+    let settings = Settings {
+        gravity: Vec2::new(px(0.0), px(-200.0)),
+        damping: px(0.1),
+        ..Settings::default()
+    };
+    let material = Material::new(px(300.0), px(0.5))?;
+    let mut rope: Rope<Vec2<S>, 8, 7> = Rope::new(
+        Vec2::new(px(0.0), px(0.0)),
+        Vec2::new(px(45.0), px(-53.6)),
+        px(7.0),
+        material,
+        settings,
+    )?;
+    rope.set_inv_mass(7, px(0.25))?;
+    let dt = px(1.0 / 60.0);
+    let mut curve = [Vec2::new(S::ZERO, S::ZERO); CURVE];
+    let (mut step_instructions, mut sample_instructions, mut substeps) = (0, 0, 0);
+    for _ in 0..STEPS {
+        let (step, n) = meter.count(|| rope.step(dt));
+        let (sampled, m) = meter.count(|| rope.sample(Smoothing::Bezier, &mut curve));
+        substeps = step?.substeps;
+        sampled?;
+        (step_instructions, sample_instructions) = (n, m);
+    }
+    let mut frame = [b' '; W * H];
+    let mut canvas = Canvas::new(&mut frame, W, H)?;
+    let view = View::new(Vec2::new(px(-60.0), px(6.0)), px(3.0), px(6.0))?;
+    canvas.polyline(&view, &curve, b'#');
+    canvas.points(&view, rope.positions(), b'o');
+    Ok(Report {
+        checksum: checksum(rope.positions(), bits),
+        step_instructions,
+        sample_instructions,
+        substeps,
+        frame,
+    })
+}
+
+pub fn q16_bits(x: Q16) -> u32 {
+    x.to_bits() as u32
+}
+
+pub fn f32_bits(x: f32) -> u32 {
+    x.to_bits()
+}
+
+#[cfg(target_os = "none")]
+mod device {
+    use core::arch::asm;
+    use core::panic::PanicInfo;
+
+    use cortex_m::peripheral::{SYST, syst::SystClkSource};
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::{debug, hprintln};
+
+    use super::*;
+
+    /// Instruction counts from SysTick: under `-icount` the core clock advances by the same
+    /// amount per instruction, so ticks / ticks-per-instruction is exact.
+    struct SysTick {
+        syst: SYST,
+        /// Ticks of the measurement itself (two back-to-back reads).
+        overhead: u32,
+        /// Ticks per 1000 instructions (from a sled of 1000 `nop`s).
+        per_1000: u32,
+    }
+
+    impl SysTick {
+        fn ticks(&mut self, f: impl FnOnce()) -> u32 {
+            let start = SYST::get_current();
+            f();
+            let end = SYST::get_current();
+            start.wrapping_sub(end) & 0x00ff_ffff // the counter counts down, 24 bits
+        }
+
+        fn new(mut syst: SYST) -> SysTick {
+            syst.set_clock_source(SystClkSource::Core);
+            syst.set_reload(0x00ff_ffff);
+            syst.clear_current();
+            syst.enable_counter();
+            let mut s = SysTick {
+                syst,
+                overhead: 0,
+                per_1000: 1,
+            };
+            s.overhead = s.ticks(|| {});
+            // The same call with and without 1000 nops in it: the difference is 1000 instructions.
+            let with = s.ticks(nop_sled);
+            let without = s.ticks(no_sled);
+            s.per_1000 = with.saturating_sub(without).max(1);
+            s
+        }
+    }
+
+    /// 1000 `nop`s, out of line so that no literal pool has to reach across them.
+    #[inline(never)]
+    fn nop_sled() {
+        unsafe { asm!(".rept 1000", "nop", ".endr", options(nomem, nostack)) }
+    }
+
+    /// The same function without the sled.
+    #[inline(never)]
+    fn no_sled() {
+        unsafe { asm!("", options(nomem, nostack)) }
+    }
+
+    impl Meter for SysTick {
+        fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+            let mut out = None;
+            let t = self.ticks(|| out = Some(f()));
+            let _ = &self.syst;
+            let n = (t.saturating_sub(self.overhead) as u64 * 1000 + self.per_1000 as u64 / 2)
+                / self.per_1000 as u64;
+            (out.expect("the closure ran"), n as u32)
+        }
+    }
+
+    const PAINT: u32 = 0xdead_beef;
+
+    unsafe extern "C" {
+        static mut __sheap: u32;
+        static _stack_start: u32;
+    }
+
+    /// Fills the free RAM between the end of .bss and the current stack with a pattern.
+    fn paint_stack() {
+        unsafe {
+            let mut p = core::ptr::addr_of_mut!(__sheap);
+            let sp = cortex_m::register::msp::read() as *mut u32;
+            while p < sp.sub(16) {
+                p.write_volatile(PAINT);
+                p = p.add(1);
+            }
+        }
+    }
+
+    /// The deepest the stack reached: from the top of RAM down to the first overwritten word.
+    fn stack_high_water() -> u32 {
+        unsafe {
+            let mut p = core::ptr::addr_of!(__sheap);
+            while p.read_volatile() == PAINT {
+                p = p.add(1);
+            }
+            core::ptr::addr_of!(_stack_start) as u32 - p as u32
+        }
+    }
+
+    #[cfg(target_abi = "eabihf")]
+    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+        hprintln!("format=f32");
+        simulate::<f32>(meter, f32_bits)
+    }
+
+    #[cfg(not(target_abi = "eabihf"))]
+    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+        hprintln!("format=q16");
+        simulate::<Q16>(meter, q16_bits)
+    }
+
+    #[entry]
+    fn main() -> ! {
+        paint_stack();
+        let peripherals = cortex_m::Peripherals::take().expect("first and only take");
+        let mut meter = SysTick::new(peripherals.SYST);
+        match run(&mut meter) {
+            Ok(r) => {
+                for row in r.frame.chunks(W) {
+                    hprintln!("|{}|", core::str::from_utf8(row).unwrap_or("?"));
+                }
+                hprintln!("steps={}", STEPS);
+                hprintln!("substeps={}", r.substeps);
+                hprintln!("checksum={:08x}", r.checksum);
+                hprintln!("step_instructions={}", r.step_instructions);
+                hprintln!("sample_instructions={}", r.sample_instructions);
+                hprintln!(
+                    "frame_instructions={}",
+                    r.step_instructions + r.sample_instructions
+                );
+                hprintln!("nop_sled_ticks_per_1000={}", meter.per_1000);
+                hprintln!("stack_bytes={}", stack_high_water());
+                debug::exit(debug::EXIT_SUCCESS);
+            }
+            Err(e) => {
+                hprintln!("error={}", e);
+                debug::exit(debug::EXIT_FAILURE);
+            }
+        }
+        loop {}
+    }
+
+    #[panic_handler]
+    fn panic(info: &PanicInfo) -> ! {
+        hprintln!("panic={}", info);
+        debug::exit(debug::EXIT_FAILURE);
+        loop {}
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+struct NoMeter;
+
+#[cfg(not(target_os = "none"))]
+impl Meter for NoMeter {
+    fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+        (f(), 0)
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    let format = std::env::args().nth(1).unwrap_or_else(|| "q16".into());
+    let report = match format.as_str() {
+        "q16" => simulate::<Q16>(&mut NoMeter, q16_bits),
+        "f32" => simulate::<f32>(&mut NoMeter, f32_bits),
+        other => {
+            eprintln!("mcu_rope: unknown format {other} (q16 or f32)");
+            std::process::exit(2);
+        }
+    };
+    match report {
+        Ok(r) => {
+            for row in r.frame.chunks(W) {
+                println!("|{}|", String::from_utf8_lossy(row));
+            }
+            println!("format={format}");
+            println!("steps={STEPS}");
+            println!("substeps={}", r.substeps);
+            println!("checksum={:08x}", r.checksum);
+        }
+        Err(e) => {
+            eprintln!("mcu_rope: {e}");
+            std::process::exit(1);
+        }
+    }
+}
