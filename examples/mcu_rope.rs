@@ -22,7 +22,7 @@ use dunas::system::Settings;
 use dunas::{Error, Q16, Rope, Scalar, Vec2};
 
 const STEPS: usize = 600;
-/// 33 points: the largest dyadic count (2⁵ + 1) that Q16.16 samples exactly.
+/// Room for the curve: Catmull-Rom over 7 spans, each halved twice, is 29 points.
 const CURVE: usize = 33;
 pub const W: usize = 40;
 pub const H: usize = 14;
@@ -81,7 +81,7 @@ pub fn simulate<S: Scalar>(
     let (mut step_instructions, mut sample_instructions, mut substeps) = (0, 0, 0);
     for _ in 0..STEPS {
         let (step, n) = meter.count(|| rope.step(dt));
-        let (sampled, m) = meter.count(|| rope.sample(Smoothing::Bezier, &mut curve));
+        let (sampled, m) = meter.count(|| rope.sample(Smoothing::CatmullRom, &mut curve));
         substeps = step?.substeps;
         sampled?;
         (step_instructions, sample_instructions) = (n, m);

@@ -50,6 +50,13 @@ impl<P: Point, const N: usize> Bezier<P, N> {
         Ok(Bezier { points })
     }
 
+    /// A curve from points the caller has already checked (convex combinations of checked
+    /// points, for instance).
+    #[inline]
+    pub(crate) fn new_unchecked(points: [P; N]) -> Self {
+        Bezier { points }
+    }
+
     /// The control points.
     #[inline]
     pub fn points(&self) -> &[P; N] {

@@ -69,6 +69,18 @@ impl Integrator {
         }
     }
 
+    /// `1 / target_omega_h`: substeps per unit of `ω·dt`, as a constant (no division at run
+    /// time). `None` when any step is stable.
+    pub fn substeps_per_omega_dt<S: Scalar>(&self) -> Option<S> {
+        match self {
+            Integrator::ExplicitEuler => Some(S::from_i16(10)),
+            // 1 / (0.9 · 2) and 1 / (0.9 · 2√2).
+            Integrator::SymplecticEuler | Integrator::Verlet => Some(S::ratio(5, 9)),
+            Integrator::Rk4 => Some(S::ratio(392_837, 1_000_000)),
+            Integrator::ImplicitEuler { .. } | Integrator::Xpbd { .. } => None,
+        }
+    }
+
     /// Force evaluations per substep.
     pub fn force_evaluations(&self) -> u32 {
         match self {

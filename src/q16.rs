@@ -117,13 +117,46 @@ impl Neg for Q16 {
     }
 }
 
+/// `round(a·b / 2¹⁶)` (ties up), saturated: the exact 64-bit form.
+#[cfg(any(test, target_pointer_width = "64"))]
+#[inline]
+pub(crate) fn mul_wide(a: i32, b: i32) -> Q16 {
+    let wide = a as i64 * b as i64;
+    Q16::saturate((wide + (1 << 15)) >> 16)
+}
+
+/// The same product from 16-bit halves and 32-bit multiplies, for cores without a 64-bit
+/// multiplier (a Cortex-M0 would call a ~40-instruction library routine for `i64 * i64`).
+/// Bit-identical to the 64-bit form (tested on edge cases and 400 000 random pairs).
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[inline]
+pub(crate) fn mul_halves(a: i32, b: i32) -> Q16 {
+    // a = ah·2¹⁶ + al with ah signed and al in 0..2¹⁶; the same for b.
+    let (ah, al) = (a >> 16, (a & 0xffff) as u32);
+    let (bh, bl) = (b >> 16, (b & 0xffff) as u32);
+    // a·b / 2¹⁶ = ah·bh·2¹⁶ + ah·bl + al·bh + al·bl / 2¹⁶, each product fitting 32 bits.
+    let high = ah * bh; // |high| <= 2^30
+    let mid = (ah * bl as i32) as i64 + (al as i32 * bh) as i64; // each |..| < 2^31
+    let low = (al * bl) as u64; // < 2^32
+    // Sum in 64-bit adds only (cheap everywhere), then round and saturate as mul_wide does.
+    let sum = ((high as i64) << 32) + (mid << 16) + low as i64;
+    Q16::saturate((sum + (1 << 15)) >> 16)
+}
+
 impl Mul for Q16 {
     type Output = Q16;
-    /// 64-bit product, rounded to nearest (ties up), saturated.
+    /// Product rounded to nearest (ties up), saturated. 64-bit multiply where the core has
+    /// one, 32-bit halves elsewhere; the results are identical bit for bit.
     #[inline]
     fn mul(self, rhs: Q16) -> Q16 {
-        let wide = self.to_bits() as i64 * rhs.to_bits() as i64;
-        Q16::saturate((wide + (1 << 15)) >> 16)
+        #[cfg(target_pointer_width = "64")]
+        {
+            mul_wide(self.to_bits(), rhs.to_bits())
+        }
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            mul_halves(self.to_bits(), rhs.to_bits())
+        }
     }
 }
 
@@ -142,7 +175,9 @@ impl Div for Q16 {
         }
         let num = a << 16;
         let q = num / b;
-        let r = num % b;
+        // One 64-bit division only: the remainder by a multiply (cheap where division is a
+        // library call, as on a Cortex-M0).
+        let r = num - q * b;
         // Round half away from zero.
         let q = if 2 * r.abs() >= b.abs() {
             q + if (num < 0) == (b < 0) { 1 } else { -1 }
@@ -165,6 +200,40 @@ impl SubAssign for Q16 {
     fn sub_assign(&mut self, rhs: Q16) {
         *self = *self - rhs;
     }
+}
+
+/// `r²` from 16-bit halves and 32-bit multiplies (no 64-bit multiply call on a Cortex-M0).
+#[inline]
+fn square(r: u32) -> u64 {
+    let (h, l) = ((r >> 16) as u64, (r & 0xffff) as u64);
+    let (hh, hl, ll) = (
+        (h as u32 * h as u32) as u64,
+        (h as u32 * l as u32) as u64,
+        (l as u32 * l as u32) as u64,
+    );
+    (hh << 32) + (hl << 17) + ll
+}
+
+/// `floor(sqrt(n))` digit by digit: shifts, adds and compares only, about 16 instructions per
+/// result bit on a Cortex-M0 (half the cost of `u64::isqrt` there, which divides). Equal to
+/// `u64::isqrt` for every input (tested).
+fn isqrt(n: u64) -> u64 {
+    if n == 0 {
+        return 0;
+    }
+    // The highest power of four not above n.
+    let mut bit = 1u64 << ((63 - n.leading_zeros()) & !1);
+    let (mut rem, mut root) = (n, 0u64);
+    while bit != 0 {
+        if rem >= root + bit {
+            rem -= root + bit;
+            root = (root >> 1) + bit;
+        } else {
+            root >>= 1;
+        }
+        bit >>= 2;
+    }
+    root
 }
 
 impl Scalar for Q16 {
@@ -226,15 +295,19 @@ impl Scalar for Q16 {
         // Squares of raw bits are Q32.32 values below 2^62; three of them fit a u64.
         let mut acc: u64 = 0;
         for &x in xs {
-            let r = x.to_bits().unsigned_abs() as u64;
-            acc = acc.saturating_add(r * r);
+            acc = acc.saturating_add(square(x.to_bits().unsigned_abs()));
         }
-        Q16::saturate(acc.isqrt() as i64)
+        Q16::saturate(isqrt(acc) as i64)
     }
 
     #[inline]
     fn floor_i32(self) -> i32 {
         self.to_bits() >> 16
+    }
+
+    #[inline]
+    fn from_i16(i: i16) -> Self {
+        Q16::from_bits((i as i32) << 16)
     }
 
     #[inline]
@@ -264,6 +337,75 @@ mod tests {
         assert_eq!(q(200.0) * q(200.0), Q16::MAX);
         assert_eq!(q(-200.0) * q(200.0), Q16::MIN);
         assert!(!(q(200.0) * q(200.0)).is_finite());
+    }
+
+    #[test]
+    fn both_multiplications_agree_bit_for_bit() {
+        // Edges, then a deterministic spread over the whole range.
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65536,
+            -65535,
+            -32768,
+            -1,
+            0,
+            1,
+            32767,
+            32768,
+            65535,
+            65536,
+            i32::MAX,
+        ];
+        for &a in &edges {
+            for &b in &edges {
+                assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
+            }
+        }
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let (a, b) = (x as i32, (x >> 32) as i32);
+            assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
+            let (a, b) = (a >> (x % 17), b >> ((x >> 8) % 17)); // smaller magnitudes too
+            assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn square_from_halves_is_exact() {
+        for r in [
+            0u32,
+            1,
+            0xffff,
+            0x1_0000,
+            0x8000_0000,
+            u32::MAX,
+            123_456_789,
+        ] {
+            assert_eq!(square(r), r as u64 * r as u64, "{r}");
+        }
+    }
+
+    #[test]
+    fn digit_by_digit_isqrt_matches_core() {
+        for n in (0u64..5000).chain([u64::MAX, u64::MAX - 1, 1 << 62, (1 << 62) - 1, 3 << 62]) {
+            assert_eq!(isqrt(n), n.isqrt(), "{n}");
+        }
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let n = x >> (x % 64);
+            assert_eq!(isqrt(n), n.isqrt(), "{n}");
+            let sq = (n >> 33) * (n >> 33); // perfect squares and their neighbours
+            for m in [sq.saturating_sub(1), sq, sq + 1] {
+                assert_eq!(isqrt(m), m.isqrt(), "{m}");
+            }
+        }
     }
 
     #[test]

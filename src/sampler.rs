@@ -354,34 +354,31 @@ impl<P: Point, const N: usize> Sampler<P, N> for Subdivide {
             needed: 2,
             got: out.len(),
         })?;
-        // Depth-first: emit the left end of each leaf, keep right halves on a stack.
-        let mut stack = [(*curve, 0u32); Subdivide::MAX_LEVEL as usize + 1];
-        let mut top = 0;
-        let (mut cur, mut depth) = (*curve, 0u32);
-        let mut written = 0;
-        loop {
-            if depth >= k {
-                if let Some(o) = out.get_mut(written) {
-                    *o = cur.start();
-                }
-                written += 1;
-                if top == 0 {
-                    break;
-                }
-                top -= 1;
-                (cur, depth) = stack[top];
-            } else {
-                let (l, r) = cur.split_half();
-                if let Some(slot) = stack.get_mut(top) {
-                    *slot = (r, depth + 1);
-                    top += 1;
-                }
-                cur = l;
-                depth += 1;
-            }
-        }
+        let mut at = 0;
+        subdivide_into(curve, k, out, &mut at);
         out[n - 1] = curve.end();
         Ok(n)
+    }
+}
+
+/// Writes the start points of the `2^level` pieces of `curve` (halved `level` times) into
+/// `out` from index `*at`, advancing it; the caller writes the end point. Depth-first
+/// recursion, at most 16 deep: only midpoints (shifts in `Q16`), nothing else on the stack.
+pub(crate) fn subdivide_into<P: Point, const N: usize>(
+    curve: &Bezier<P, N>,
+    level: u32,
+    out: &mut [P],
+    at: &mut usize,
+) {
+    if level == 0 {
+        if let Some(o) = out.get_mut(*at) {
+            *o = curve.start();
+        }
+        *at += 1;
+    } else {
+        let (l, r) = curve.split_half();
+        subdivide_into(&l, level - 1, out, at);
+        subdivide_into(&r, level - 1, out, at);
     }
 }
 

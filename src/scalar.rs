@@ -173,6 +173,10 @@ macro_rules! impl_float {
                 if (n as $t) < self { n + 1 } else { n }
             }
             #[inline]
+            fn from_i16(i: i16) -> Self {
+                i as $t
+            }
+            #[inline]
             fn floor_i32(self) -> i32 {
                 // `as` saturates and maps NaN to 0; step down for negative non-integers.
                 let t = self as i32;

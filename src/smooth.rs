@@ -46,8 +46,10 @@ pub enum Smoothing {
 
 /// Samples the curve that `method` makes of `particles` into `out`; returns the count.
 ///
-/// The count is `out.len()`, except for [`Smoothing::Bezier`] in `Q16`, which uses
-/// [`Subdivide`](crate::sampler::Subdivide) and writes the largest `2^k + 1 <= out.len()`.
+/// The count is `out.len()` in floats. In `Q16` every method samples at dyadic parameters with
+/// shifts and additions only (no rounded `t`, no multiplication): [`Smoothing::Bezier`] writes
+/// the largest `2^k + 1 <= out.len()` points, the others the largest `(K-1)·2^k + 1` (each span
+/// halved `k` times).
 ///
 /// # Errors
 /// [`Error::NonFinite`] / [`Error::OutOfRange`] when a particle is NaN, infinite, saturated
@@ -253,7 +255,37 @@ fn eval_cubic<P: Point>(b: &[P; 4], t: P::Scalar) -> P {
     q0.lerp(q1, t).lerp(q1.lerp(q2, t), t)
 }
 
+/// The dyadic level `k` for `spans` pieces in `len` slots: the largest `spans·2^k + 1 <= len`
+/// (`k <= 12`), or `None` when even one point per span does not fit.
+fn dyadic_level(spans: usize, len: usize) -> Option<u32> {
+    let mut k = None;
+    for level in 0..=12u32 {
+        match spans.checked_mul(1 << level) {
+            Some(m) if m < len => k = Some(level),
+            _ => break,
+        }
+    }
+    k
+}
+
+/// `Q16` path: each span halved `k` times (shifts only), `spans·2^k + 1` points.
+fn sample_spans_dyadic<P: Point, const M: usize>(spans: &[[P; M]], k: u32, out: &mut [P]) -> usize {
+    let mut at = 0;
+    for span in spans {
+        crate::sampler::subdivide_into(&Bezier::new_unchecked(*span), k, out, &mut at);
+    }
+    if let (Some(o), Some(last)) = (out.get_mut(at), spans.last()) {
+        *o = last[M - 1];
+    }
+    at + 1
+}
+
 fn sample_spans<P: Point, const K: usize>(spans: &[[P; 4]; K], out: &mut [P]) -> usize {
+    if P::Scalar::FIXED_POINT
+        && let Some(k) = dyadic_level(K - 1, out.len())
+    {
+        return sample_spans_dyadic(&spans[..K - 1], k, out);
+    }
     let n = out.len().min(crate::sampler::MAX_SAMPLES);
     for_each_param::<P::Scalar>(K - 1, n, |i, s, t| out[i] = eval_cubic(&spans[s], t));
     out[0] = spans[0][0];
@@ -262,6 +294,12 @@ fn sample_spans<P: Point, const K: usize>(spans: &[[P; 4]; K], out: &mut [P]) ->
 }
 
 fn sample_polyline<P: Point, const K: usize>(p: &[P; K], out: &mut [P]) -> usize {
+    if P::Scalar::FIXED_POINT
+        && let Some(k) = dyadic_level(K - 1, out.len())
+    {
+        let segments: [[P; 2]; K] = core::array::from_fn(|i| [p[i], p[(i + 1).min(K - 1)]]);
+        return sample_spans_dyadic(&segments[..K - 1], k, out);
+    }
     let n = out.len().min(crate::sampler::MAX_SAMPLES);
     for_each_param::<P::Scalar>(K - 1, n, |i, s, t| out[i] = p[s].lerp(p[s + 1], t));
     out[n - 1] = p[K - 1];

@@ -59,6 +59,9 @@ pub struct MassSpring<P: Point, Sh: Shape, T> {
     inv_mass: Sh::Of<P::Scalar>,
     topology: T,
     time: P::Scalar,
+    /// `ω + γ_springs` from the springs and masses (see `stiffness_bound`), kept current by
+    /// every method that changes masses or springs so a step does not recompute it.
+    spring_rate: P::Scalar,
     /// Gravity, damping, integrator and bounds.
     pub settings: Settings<P>,
 }
@@ -116,7 +119,9 @@ fn flush_tiny<P: Point>(v: &mut P, limit: P::Scalar) -> bool {
     for d in 0..P::DIM {
         let c = v.coord(d);
         let a = c.abs();
-        v.set_coord(d, if a < tiny { P::Scalar::ZERO } else { c });
+        if !P::Scalar::FIXED_POINT && a < tiny {
+            v.set_coord(d, P::Scalar::ZERO);
+        }
         ok &= (a <= limit) & c.is_finite();
     }
     ok
@@ -162,14 +167,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
                 len: Sh::LEN,
             });
         }
-        Ok(MassSpring {
+        let mut system = MassSpring {
             pos: positions,
             vel: Sh::filled(P::default()),
             inv_mass,
             topology,
             time: P::Scalar::ZERO,
+            spring_rate: P::Scalar::ZERO,
             settings,
-        })
+        };
+        system.spring_rate = system.compute_spring_rate();
+        Ok(system)
     }
 
     /// Positions, in flat order.
@@ -277,6 +285,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         if inv_mass == P::Scalar::ZERO {
             Sh::flat_mut(&mut self.vel)[i] = P::default();
         }
+        self.spring_rate = self.compute_spring_rate();
         Ok(())
     }
 
@@ -301,9 +310,21 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
     }
 
     /// The highest angular frequency `ω` (rad/s) of the springs and the damping rate `γ` (1/s)
-    /// that the substep count guards against, by Gershgorin's bound. Cost: one pass over the
-    /// springs.
+    /// that the substep count guards against, by Gershgorin's bound. Cached: changing masses
+    /// or springs through this type's methods updates it.
     pub fn stiffness_bound(&self) -> (P::Scalar, P::Scalar) {
+        let (omega, gamma) = self.bound_parts();
+        (omega, gamma + self.settings.damping)
+    }
+
+    fn compute_spring_rate(&self) -> P::Scalar {
+        let (omega, gamma) = self.bound_parts();
+        omega + gamma
+    }
+
+    /// `(ω, γ from spring damping)`; one pass over the springs and two square roots per
+    /// particle, so it is cached in `spring_rate`.
+    fn bound_parts(&self) -> (P::Scalar, P::Scalar) {
         // Sums are kept divided by 64 and the roots taken separately, so that in Q16 neither
         // Σk nor w·Σk saturates before the square root (ω = 8·sqrt(w)·sqrt(Σk/64)).
         let w = self.inv_masses();
@@ -338,21 +359,24 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
     /// The substeps for a frame of `dt` and their length: enough that `(ω + γ)·h` stays at the
     /// integrator's target (see [`Integrator::target_omega_h`]), at most [`MAX_SUBSTEPS`].
     pub fn substeps_for(&self, dt: P::Scalar) -> (u16, P::Scalar) {
-        let Some(target) = self.settings.integrator.target_omega_h::<P::Scalar>() else {
+        let Some(per) = self
+            .settings
+            .integrator
+            .substeps_per_omega_dt::<P::Scalar>()
+        else {
             return (1, dt);
         };
-        let (omega, gamma) = self.stiffness_bound();
-        let rate = omega + gamma;
+        let rate = self.spring_rate + self.settings.damping;
         if rate <= P::Scalar::ZERO {
             return (1, dt);
         }
-        let n = (dt * rate / target)
+        match (dt * rate * per)
             .ceil_count(MAX_SUBSTEPS as usize + 1)
-            .max(1);
-        if n > MAX_SUBSTEPS as usize {
-            (MAX_SUBSTEPS, target / rate)
-        } else {
-            (n as u16, dt / P::Scalar::from_i16(n as i16))
+            .max(1)
+        {
+            1 => (1, dt),
+            n if n > MAX_SUBSTEPS as usize => (MAX_SUBSTEPS, P::Scalar::ONE / (rate * per)),
+            n => (n as u16, dt / P::Scalar::from_i16(n as i16)),
         }
     }
 
@@ -516,7 +540,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
     fn euler<F: ForceField<P>>(&mut self, h: P::Scalar, forces: &mut F, symplectic: bool) {
         let a = self.accelerations_now(forces, true);
         let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
-        for ((x, v), a) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)) {
+        let w = Sh::flat(&self.inv_mass);
+        for (((x, v), a), &w) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)).zip(w) {
+            // Pinned particles neither accelerate nor move: skip their multiplications.
+            if w <= P::Scalar::ZERO {
+                continue;
+            }
             if symplectic {
                 *v += *a * h;
                 *x += *v * h;
