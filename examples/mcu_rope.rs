@@ -16,6 +16,7 @@
 #![cfg_attr(target_os = "none", no_main)]
 
 use dunas::ascii::{Canvas, View};
+use dunas::integrator::only;
 use dunas::smooth::Smoothing;
 use dunas::spring::Material;
 use dunas::system::Settings;
@@ -61,22 +62,26 @@ pub fn simulate<S: Scalar>(
     meter: &mut impl Meter,
     bits: impl Fn(S) -> u32,
 ) -> Result<Report, Error> {
-    let px = |v: f64| S::from_f64(v);
+    // Constants from integers and ratios: no f64 conversion code on the device.
+    let px = |v: i16| S::from_i16(v);
+    let frac = |n: u32, d: u32| S::ratio(n, d);
+    // Symplectic Euler fixed at compile time: the other integrators are not linked.
     let settings = Settings {
-        gravity: Vec2::new(px(0.0), px(-200.0)),
-        damping: px(0.1),
+        gravity: Vec2::new(px(0), px(-200)),
+        damping: frac(1, 10),
         ..Settings::default()
-    };
-    let material = Material::new(px(300.0), px(0.5))?;
-    let mut rope: Rope<Vec2<S>, 8, 7> = Rope::new(
-        Vec2::new(px(0.0), px(0.0)),
-        Vec2::new(px(45.0), px(-53.6)),
-        px(7.0),
+    }
+    .with_integrator(only::SymplecticEuler);
+    let material = Material::new(px(300), frac(1, 2))?;
+    let mut rope: Rope<Vec2<S>, 8, 7, only::SymplecticEuler> = Rope::new(
+        Vec2::new(px(0), px(0)),
+        Vec2::new(px(45), -frac(536, 10)),
+        px(7),
         material,
         settings,
     )?;
-    rope.set_inv_mass(7, px(0.25))?;
-    let dt = px(1.0 / 60.0);
+    rope.set_inv_mass(7, frac(1, 4))?;
+    let dt = frac(1, 60);
     let mut curve = [Vec2::new(S::ZERO, S::ZERO); CURVE];
     let (mut step_instructions, mut sample_instructions, mut substeps) = (0, 0, 0);
     for _ in 0..STEPS {
@@ -88,7 +93,7 @@ pub fn simulate<S: Scalar>(
     }
     let mut frame = [b' '; W * H];
     let mut canvas = Canvas::new(&mut frame, W, H)?;
-    let view = View::new(Vec2::new(px(-60.0), px(6.0)), px(3.0), px(6.0))?;
+    let view = View::new(Vec2::new(px(-60), px(6)), px(3), px(6))?;
     canvas.polyline(&view, &curve, b'#');
     canvas.points(&view, rope.positions(), b'o');
     Ok(Report {
@@ -115,17 +120,17 @@ mod device {
 
     use cortex_m::peripheral::{SYST, syst::SystClkSource};
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprintln};
+    use cortex_m_semihosting::{debug, hio};
 
     use super::*;
 
     /// Instruction counts from SysTick: under `-icount` the core clock advances by the same
     /// amount per instruction, so ticks / ticks-per-instruction is exact.
     struct SysTick {
-        syst: SYST,
+        _syst: SYST,
         /// Ticks of the measurement itself (two back-to-back reads).
         overhead: u32,
-        /// Ticks per 1000 instructions (from a sled of 1000 `nop`s).
+        /// Ticks per 1000 instructions, from a sled of 1000 `nop`s.
         per_1000: u32,
     }
 
@@ -143,14 +148,14 @@ mod device {
             syst.clear_current();
             syst.enable_counter();
             let mut s = SysTick {
-                syst,
+                _syst: syst,
                 overhead: 0,
                 per_1000: 1,
             };
             s.overhead = s.ticks(|| {});
-            // The same call with and without 1000 nops in it: the difference is 1000 instructions.
-            let with = s.ticks(nop_sled);
-            let without = s.ticks(no_sled);
+            // Two calls alike but for 1000 nops in one: the difference is 1000 instructions.
+            let with = s.ticks(sled_1000);
+            let without = s.ticks(sled_0);
             s.per_1000 = with.saturating_sub(without).max(1);
             s
         }
@@ -158,13 +163,13 @@ mod device {
 
     /// 1000 `nop`s, out of line so that no literal pool has to reach across them.
     #[inline(never)]
-    fn nop_sled() {
+    fn sled_1000() {
         unsafe { asm!(".rept 1000", "nop", ".endr", options(nomem, nostack)) }
     }
 
-    /// The same function without the sled.
+    /// The same function without them.
     #[inline(never)]
-    fn no_sled() {
+    fn sled_0() {
         unsafe { asm!("", options(nomem, nostack)) }
     }
 
@@ -172,11 +177,50 @@ mod device {
         fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
             let mut out = None;
             let t = self.ticks(|| out = Some(f()));
-            let _ = &self.syst;
             let n = (t.saturating_sub(self.overhead) as u64 * 1000 + self.per_1000 as u64 / 2)
                 / self.per_1000 as u64;
-            (out.expect("the closure ran"), n as u32)
+            match out {
+                Some(r) => (r, n as u32),
+                None => fail(b"meter"),
+            }
         }
+    }
+
+    /// Writes to the host's standard output; integers by hand, so that `core::fmt` (20-30 KiB
+    /// with its float code) stays out of flash.
+    fn put(bytes: &[u8]) {
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = out.write_all(bytes);
+        }
+    }
+
+    /// `key=value` in decimal, or in hex (8 digits) with `hex`.
+    fn put_number(key: &[u8], value: u32, hex: bool) {
+        let base = if hex { 16 } else { 10 };
+        let mut digits = [0u8; 10];
+        let (mut v, mut n) = (value, 0);
+        loop {
+            let d = (v % base) as u8;
+            digits[n] = if d < 10 { b'0' + d } else { b'a' + d - 10 };
+            n += 1;
+            v /= base;
+            if v == 0 && (!hex || n >= 8) {
+                break;
+            }
+        }
+        put(key);
+        put(b"=");
+        digits[..n].reverse();
+        put(&digits[..n]);
+        put(b"\n");
+    }
+
+    fn fail(what: &[u8]) -> ! {
+        put(b"error=");
+        put(what);
+        put(b"\n");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {}
     }
 
     const PAINT: u32 = 0xdead_beef;
@@ -211,52 +255,53 @@ mod device {
 
     #[cfg(target_abi = "eabihf")]
     fn run(meter: &mut SysTick) -> Result<Report, Error> {
-        hprintln!("format=f32");
+        put(b"format=f32\n");
         simulate::<f32>(meter, f32_bits)
     }
 
     #[cfg(not(target_abi = "eabihf"))]
     fn run(meter: &mut SysTick) -> Result<Report, Error> {
-        hprintln!("format=q16");
+        put(b"format=q16\n");
         simulate::<Q16>(meter, q16_bits)
     }
 
     #[entry]
     fn main() -> ! {
         paint_stack();
-        let peripherals = cortex_m::Peripherals::take().expect("first and only take");
+        let Some(peripherals) = cortex_m::Peripherals::take() else {
+            fail(b"peripherals")
+        };
         let mut meter = SysTick::new(peripherals.SYST);
         match run(&mut meter) {
             Ok(r) => {
                 for row in r.frame.chunks(W) {
-                    hprintln!("|{}|", core::str::from_utf8(row).unwrap_or("?"));
+                    put(b"|");
+                    put(row);
+                    put(b"|\n");
                 }
-                hprintln!("steps={}", STEPS);
-                hprintln!("substeps={}", r.substeps);
-                hprintln!("checksum={:08x}", r.checksum);
-                hprintln!("step_instructions={}", r.step_instructions);
-                hprintln!("sample_instructions={}", r.sample_instructions);
-                hprintln!(
-                    "frame_instructions={}",
-                    r.step_instructions + r.sample_instructions
+                put_number(b"steps", STEPS as u32, false);
+                put_number(b"substeps", r.substeps as u32, false);
+                put_number(b"checksum", r.checksum, true);
+                put_number(b"step_instructions", r.step_instructions, false);
+                put_number(b"sample_instructions", r.sample_instructions, false);
+                put_number(
+                    b"frame_instructions",
+                    r.step_instructions + r.sample_instructions,
+                    false,
                 );
-                hprintln!("nop_sled_ticks_per_1000={}", meter.per_1000);
-                hprintln!("stack_bytes={}", stack_high_water());
+                put_number(b"ticks_per_1000_instructions", meter.per_1000, false);
+                put_number(b"stack_bytes", stack_high_water(), false);
                 debug::exit(debug::EXIT_SUCCESS);
+                loop {}
             }
-            Err(e) => {
-                hprintln!("error={}", e);
-                debug::exit(debug::EXIT_FAILURE);
-            }
+            Err(Error::Diverged) => fail(b"diverged"),
+            Err(_) => fail(b"setup"),
         }
-        loop {}
     }
 
     #[panic_handler]
-    fn panic(info: &PanicInfo) -> ! {
-        hprintln!("panic={}", info);
-        debug::exit(debug::EXIT_FAILURE);
-        loop {}
+    fn panic(_: &PanicInfo) -> ! {
+        fail(b"panic")
     }
 }
 

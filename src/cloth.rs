@@ -3,10 +3,11 @@
 
 use core::ops::{Deref, DerefMut};
 
+use crate::integrator::Choice;
 use crate::shape::Grid;
 use crate::spring::{GridSprings, Material};
 use crate::system::{MassSpring, Settings};
-use crate::{Error, Patch, Point, Scalar, Vec3};
+use crate::{Error, Integrator, Patch, Point, Scalar, Vec3};
 
 /// A `U × V` cloth: a sail, a flag, a cape. The springs are implied by the grid
 /// ([`GridSprings`]), so an 8×8 sail in `f32` is under 2 KiB of state.
@@ -31,11 +32,11 @@ use crate::{Error, Patch, Point, Scalar, Vec3};
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Cloth<P: Point, const U: usize, const V: usize> {
-    system: MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>>,
+pub struct Cloth<P: Point, const U: usize, const V: usize, I = Integrator> {
+    system: MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>, I>,
 }
 
-impl<P: Point, const U: usize, const V: usize> Cloth<P, U, V> {
+impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
     /// A flat cloth with particle `(i, j)` at `origin + du·i/(U-1) + dv·j/(V-1)`: `du` and `dv`
     /// are the whole edges. Total `mass` split evenly, nothing pinned; `materials` are the
     /// structural, shear and bending springs, relaxed at the initial spacing.
@@ -49,7 +50,7 @@ impl<P: Point, const U: usize, const V: usize> Cloth<P, U, V> {
         dv: P,
         mass: P::Scalar,
         materials: [Material<P::Scalar>; 3],
-        settings: Settings<P>,
+        settings: Settings<P, I>,
     ) -> Result<Self, Error> {
         const {
             assert!(
@@ -126,7 +127,7 @@ impl<P: Point, const U: usize, const V: usize> Cloth<P, U, V> {
     }
 }
 
-impl<S: Scalar, const U: usize, const V: usize> Cloth<Vec3<S>, U, V> {
+impl<S: Scalar, const U: usize, const V: usize, I: Choice> Cloth<Vec3<S>, U, V, I> {
     /// Samples the smoothed surface: an `nu × nv` grid of positions and unit normals (see
     /// [`Patch::sample_grid_with_normals`]); returns the point count.
     ///
@@ -144,14 +145,14 @@ impl<S: Scalar, const U: usize, const V: usize> Cloth<Vec3<S>, U, V> {
     }
 }
 
-impl<P: Point, const U: usize, const V: usize> Deref for Cloth<P, U, V> {
-    type Target = MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>>;
+impl<P: Point, const U: usize, const V: usize, I> Deref for Cloth<P, U, V, I> {
+    type Target = MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>, I>;
     fn deref(&self) -> &Self::Target {
         &self.system
     }
 }
 
-impl<P: Point, const U: usize, const V: usize> DerefMut for Cloth<P, U, V> {
+impl<P: Point, const U: usize, const V: usize, I> DerefMut for Cloth<P, U, V, I> {
     fn deref_mut(&mut self) -> &mut Self::Target {
         &mut self.system
     }

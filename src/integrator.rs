@@ -18,7 +18,117 @@
 //! Per spring, a force evaluation costs one square root, one division and about 20
 //! multiply-adds; per particle, about 6 operations.
 
+use core::fmt::Debug;
+
 use crate::Scalar;
+
+/// How a system names its integrator: the [`Integrator`] enum, chosen at run time (the
+/// default), or one of the zero-sized types of [`only`], chosen at compile time so that the
+/// other integrators' code is never linked: what a 16 KiB flash budget needs.
+///
+/// ```
+/// use dunas::{MassSpring, Vec2, integrator::only, shape::Line, spring::{Material, Springs}, system::Settings};
+/// let pos = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 0.0)];
+/// let springs = Springs::<f32, 1>::chain(&pos, Material::new(100.0, 0.1)?)?;
+/// let settings = Settings { damping: 0.1, ..Settings::default() }.with_integrator(only::SymplecticEuler);
+/// let mut s: MassSpring<_, Line<2>, _, only::SymplecticEuler> = MassSpring::new(pos, [0.0, 1.0], springs, settings)?;
+/// s.step(1.0 / 60.0)?;
+/// # Ok::<(), dunas::Error>(())
+/// ```
+pub trait Choice: Copy + Default + Debug + PartialEq {
+    /// The integrator to use now.
+    fn integrator(&self) -> Integrator;
+}
+
+impl Choice for Integrator {
+    #[inline]
+    fn integrator(&self) -> Integrator {
+        *self
+    }
+}
+
+/// Integrators fixed at compile time (see [`Choice`]).
+pub mod only {
+    use super::{Choice, Integrator};
+
+    macro_rules! fixed {
+        ($(#[$doc:meta])* $name:ident) => {
+            $(#[$doc])*
+            #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+            pub struct $name;
+
+            impl Choice for $name {
+                #[inline(always)]
+                fn integrator(&self) -> Integrator {
+                    Integrator::$name
+                }
+            }
+        };
+    }
+
+    fixed!(
+        /// [`Integrator::ExplicitEuler`], and nothing else linked.
+        ExplicitEuler
+    );
+    fixed!(
+        /// [`Integrator::SymplecticEuler`], and nothing else linked.
+        SymplecticEuler
+    );
+    fixed!(
+        /// [`Integrator::Verlet`], and nothing else linked.
+        Verlet
+    );
+    fixed!(
+        /// [`Integrator::Rk4`], and nothing else linked.
+        Rk4
+    );
+
+    /// [`Integrator::ImplicitEuler`], and nothing else linked.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub struct ImplicitEuler {
+        /// Conjugate-gradient iteration budget.
+        pub iterations: u8,
+    }
+
+    impl Default for ImplicitEuler {
+        /// 16 iterations.
+        fn default() -> Self {
+            ImplicitEuler { iterations: 16 }
+        }
+    }
+
+    impl Choice for ImplicitEuler {
+        #[inline(always)]
+        fn integrator(&self) -> Integrator {
+            Integrator::ImplicitEuler {
+                iterations: self.iterations,
+            }
+        }
+    }
+
+    /// [`Integrator::Xpbd`], and nothing else linked.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub struct Xpbd {
+        /// XPBD substeps per step.
+        pub substeps: u8,
+    }
+
+    impl Default for Xpbd {
+        /// 4 substeps.
+        fn default() -> Self {
+            Xpbd { substeps: 4 }
+        }
+    }
+
+    impl Choice for Xpbd {
+        #[inline(always)]
+        fn integrator(&self) -> Integrator {
+            Integrator::Xpbd {
+                substeps: self.substeps,
+            }
+        }
+    }
+}
 
 /// How [`MassSpring`](crate::MassSpring) advances in time. See the [module docs](self).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -2,12 +2,13 @@
 
 use core::ops::{Deref, DerefMut};
 
+use crate::integrator::Choice;
 use crate::sampler::Sampler;
 use crate::shape::Line;
 use crate::smooth::{self, Smoothing};
 use crate::spring::{Material, Springs};
 use crate::system::{MassSpring, Settings};
-use crate::{Bezier, Error, Point, Scalar};
+use crate::{Bezier, Error, Integrator, Point, Scalar};
 
 /// A rope of `N` particles with room for `CAP` springs of one material.
 ///
@@ -33,11 +34,11 @@ use crate::{Bezier, Error, Point, Scalar};
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Rope<P: Point, const N: usize, const CAP: usize> {
-    system: MassSpring<P, Line<N>, Springs<P::Scalar, CAP>>,
+pub struct Rope<P: Point, const N: usize, const CAP: usize, I = Integrator> {
+    system: MassSpring<P, Line<N>, Springs<P::Scalar, CAP>, I>,
 }
 
-impl<P: Point, const N: usize, const CAP: usize> Rope<P, N, CAP> {
+impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
     /// A straight rope from `start` (pinned) to `end`, of total `mass` split evenly, its
     /// springs relaxed at the initial spacing.
     ///
@@ -50,7 +51,7 @@ impl<P: Point, const N: usize, const CAP: usize> Rope<P, N, CAP> {
         end: P,
         mass: P::Scalar,
         material: Material<P::Scalar>,
-        settings: Settings<P>,
+        settings: Settings<P, I>,
     ) -> Result<Self, Error> {
         const { assert!(N >= 2, "a rope needs at least 2 particles") };
         crate::error::check_points(&[start, end])?;
@@ -75,7 +76,7 @@ impl<P: Point, const N: usize, const CAP: usize> Rope<P, N, CAP> {
         positions: [P; N],
         inv_mass: [P::Scalar; N],
         springs: Springs<P::Scalar, CAP>,
-        settings: Settings<P>,
+        settings: Settings<P, I>,
     ) -> Result<Self, Error> {
         Ok(Rope {
             system: MassSpring::new(positions, inv_mass, springs, settings)?,
@@ -159,14 +160,14 @@ impl<P: Point, const N: usize, const CAP: usize> Rope<P, N, CAP> {
     }
 }
 
-impl<P: Point, const N: usize, const CAP: usize> Deref for Rope<P, N, CAP> {
-    type Target = MassSpring<P, Line<N>, Springs<P::Scalar, CAP>>;
+impl<P: Point, const N: usize, const CAP: usize, I> Deref for Rope<P, N, CAP, I> {
+    type Target = MassSpring<P, Line<N>, Springs<P::Scalar, CAP>, I>;
     fn deref(&self) -> &Self::Target {
         &self.system
     }
 }
 
-impl<P: Point, const N: usize, const CAP: usize> DerefMut for Rope<P, N, CAP> {
+impl<P: Point, const N: usize, const CAP: usize, I> DerefMut for Rope<P, N, CAP, I> {
     fn deref_mut(&mut self) -> &mut Self::Target {
         &mut self.system
     }

@@ -54,6 +54,8 @@ pub enum Smoothing {
 /// # Errors
 /// [`Error::NonFinite`] / [`Error::OutOfRange`] when a particle is NaN, infinite, saturated
 /// or beyond [`Scalar::SAFE_RANGE`]; [`Error::BufferTooSmall`] when `out` holds fewer than 2.
+// Inlined so that a constant `method` folds away the other methods' code (flash on a device).
+#[inline]
 pub fn sample<P: Point, const K: usize>(
     method: Smoothing,
     particles: &[P; K],

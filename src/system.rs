@@ -1,6 +1,7 @@
 //! The mass-spring system: particles, springs, integrator, and a step that cannot explode.
 
 use crate::force::{Accelerations, Bodies, ForceField};
+use crate::integrator::Choice;
 use crate::shape::Shape;
 use crate::spring::{Material, Topology};
 use crate::{Error, Integrator, Point, Scalar};
@@ -11,9 +12,10 @@ pub const MAX_SUBSTEPS: u16 = 64;
 
 /// Per-system settings. Public fields: change them between steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Settings<P: Point> {
-    /// The time integrator.
-    pub integrator: Integrator,
+pub struct Settings<P: Point, I = Integrator> {
+    /// The time integrator: the [`Integrator`] enum, or a type of
+    /// [`integrator::only`](crate::integrator::only) to link just that one.
+    pub integrator: I,
     /// Gravity, an acceleration (units per second²), applied to every free particle.
     pub gravity: P,
     /// Linear damping rate (1/s): every free particle loses `damping · v` of acceleration.
@@ -21,6 +23,19 @@ pub struct Settings<P: Point> {
     /// Scene half-size: a step that puts any coordinate beyond `±bounds` is refused as
     /// divergent. Defaults to [`Scalar::SAFE_RANGE`].
     pub bounds: P::Scalar,
+}
+
+impl<P: Point, I> Settings<P, I> {
+    /// The same settings with another integrator: the way to fix one at compile time,
+    /// `Settings { gravity, ..Settings::default() }.with_integrator(only::SymplecticEuler)`.
+    pub fn with_integrator<J: Choice>(self, integrator: J) -> Settings<P, J> {
+        Settings {
+            integrator,
+            gravity: self.gravity,
+            damping: self.damping,
+            bounds: self.bounds,
+        }
+    }
 }
 
 impl<P: Point> Default for Settings<P> {
@@ -53,7 +68,7 @@ pub struct StepInfo<S> {
 /// A particle with inverse mass 0 is pinned: the integrators never move it, and the game moves
 /// it with [`set_position`](Self::set_position) (a rope held by a hand).
 #[derive(Clone)]
-pub struct MassSpring<P: Point, Sh: Shape, T> {
+pub struct MassSpring<P: Point, Sh: Shape, T, I = Integrator> {
     pos: Sh::Of<P>,
     vel: Sh::Of<P>,
     inv_mass: Sh::Of<P::Scalar>,
@@ -63,10 +78,12 @@ pub struct MassSpring<P: Point, Sh: Shape, T> {
     /// every method that changes masses or springs so a step does not recompute it.
     spring_rate: P::Scalar,
     /// Gravity, damping, integrator and bounds.
-    pub settings: Settings<P>,
+    pub settings: Settings<P, I>,
 }
 
-impl<P: Point, Sh: Shape, T: core::fmt::Debug> core::fmt::Debug for MassSpring<P, Sh, T> {
+impl<P: Point, Sh: Shape, T: core::fmt::Debug, I: core::fmt::Debug> core::fmt::Debug
+    for MassSpring<P, Sh, T, I>
+{
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("MassSpring")
             .field("pos", &Sh::flat(&self.pos))
@@ -135,7 +152,7 @@ fn dot_all<P: Point>(a: &[P], b: &[P]) -> P::Scalar {
     s
 }
 
-impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
+impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Choice> MassSpring<P, Sh, T, I> {
     /// A system at rest at `positions`, with per-particle inverse masses (0 pins).
     ///
     /// # Errors
@@ -146,7 +163,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         positions: Sh::Of<P>,
         inv_mass: Sh::Of<P::Scalar>,
         topology: T,
-        settings: Settings<P>,
+        settings: Settings<P, I>,
     ) -> Result<Self, Error> {
         crate::error::check_points(Sh::flat(&positions))?;
         if Sh::flat(&inv_mass)
@@ -362,6 +379,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
         let Some(per) = self
             .settings
             .integrator
+            .integrator()
             .substeps_per_omega_dt::<P::Scalar>()
         else {
             return (1, dt);
@@ -451,7 +469,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> MassSpring<P, Sh, T> {
     ) -> Result<(), Error> {
         let saved = (self.pos, self.vel, self.time);
         for _ in 0..n {
-            match self.settings.integrator {
+            match self.settings.integrator.integrator() {
                 Integrator::ExplicitEuler => self.euler(h, forces, false),
                 Integrator::SymplecticEuler => self.euler(h, forces, true),
                 Integrator::Verlet => self.verlet(h, forces),
