@@ -52,6 +52,7 @@
 //! | `fixed` | yes | the [`Q16`] Q16.16 format, for chips without an FPU |
 //! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (at most 6.1% and 3.5% off, measured) |
 //! | `xml` | no | loading the thesis's scene and physics XML files (`xml` module; needs `std`) |
+//! | `embedded-graphics` | no | drawing curves and patch wireframes into any `DrawTarget` (`graphics` module) |
 //!
 //! `f32` and `f64` need `std` or `libm`; a hosted build with neither and without `fixed`
 //! stops with a `compile_error!`. On bare-metal targets (`target_os = "none"`) float math
@@ -81,6 +82,8 @@ mod cloth;
 pub mod curve;
 mod error;
 pub mod force;
+#[cfg(feature = "embedded-graphics")]
+pub mod graphics;
 pub mod integrator;
 pub mod lod;
 pub mod patch;
