@@ -7,7 +7,7 @@ mod common;
 
 use std::f64::consts::PI;
 
-use common::{catenary_a, jacobi_eigen, period, up_crossings};
+use common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period, up_crossings};
 
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
@@ -125,51 +125,25 @@ fn small_angle_pendulum_period() {
     }
 }
 
-/// A chain of `N` particles hanging at rest between pins at (±span/2, 0); returns the largest
-/// vertical distance to the catenary of the same length, relative to the sag.
+/// A chain of `N` particles hanging at rest between pins at (±span/2, 0): the largest vertical
+/// distance to the catenary of the same length, relative to the sag. Backward Euler with a
+/// converged CG settles the very stiff chain in large steps.
 fn catenary_error<const N: usize, const CAP: usize>(span: f64, length: f64) -> f64 {
-    let seg = length / (N - 1) as f64;
-    // Start on a V shape of the right length so that the springs start at rest length.
-    let half_dx = span / 2.0 / ((N - 1) as f64 / 2.0);
-    let dy = (seg * seg - half_dx * half_dx).sqrt();
-    let pos: [Vec2<f64>; N] = core::array::from_fn(|i| {
-        let from_mid = (i as f64 - (N - 1) as f64 / 2.0).abs();
-        Vec2::new(
-            -span / 2.0 + i as f64 * half_dx,
-            -((N - 1) as f64 / 2.0 - from_mid) * dy,
-        )
-    });
-    let mut springs = Springs::new(Material::new(1e7, 0.0).unwrap());
-    for i in 0..N - 1 {
-        springs.connect_with_rest(N, i, i + 1, seg).unwrap();
-    }
-    let mut inv = [N as f64; N]; // total mass 1
-    inv[0] = 0.0;
-    inv[N - 1] = 0.0;
-    // Backward Euler with a converged CG settles a very stiff chain in large steps.
-    let settings = Settings {
-        integrator: Integrator::ImplicitEuler { iterations: 200 },
-        gravity: Vec2::new(0.0, -9.81),
-        damping: 2.0,
-        ..Settings::default()
-    };
-    let mut sys: Chain<N, CAP> = MassSpring::new(pos, inv, springs, settings).unwrap();
-    for _ in 0..600 {
-        sys.step(1.0 / 30.0).unwrap();
-    }
+    let sys = chain_between_pins::<N, CAP>(
+        span,
+        length,
+        1e7,
+        Integrator::ImplicitEuler { iterations: 200 },
+        600,
+        1.0 / 30.0,
+    );
     let speed = sys
         .velocities()
         .iter()
         .map(|v| v.length())
         .fold(0.0, f64::max);
     assert!(speed < 1e-6, "not at rest: {speed}");
-    let a = catenary_a(span, length);
-    let c = -a * (span / (2.0 * a)).cosh();
-    let sag = -(a + c);
-    sys.positions()
-        .iter()
-        .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
-        .fold(0.0, f64::max)
+    catenary_sag_error(sys.positions(), span, length)
 }
 
 #[test]

@@ -10,7 +10,7 @@ use dunas::spring::{Material, Springs};
 use dunas::system::Settings;
 use dunas::{Integrator, MassSpring, Vec2};
 
-use crate::common::{catenary_a, jacobi_eigen, period};
+use crate::common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period};
 use crate::report::{Run, Series, chart, csv, num};
 
 type Chain<const N: usize, const CAP: usize> = MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>>;
@@ -177,50 +177,10 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
 /// A chain of 40 settling between two pins: the sag error against the catenary after 10 s
 /// at 30 Hz, for the solver budgets of the unconditionally stable methods.
 fn catenary(integrator: Integrator) -> (f64, f64) {
-    const N: usize = 40;
-    let (span, length) = (4.0, 5.0);
-    let seg = length / (N - 1) as f64;
-    let half_dx = span / 2.0 / ((N - 1) as f64 / 2.0);
-    let dy = (seg * seg - half_dx * half_dx).sqrt();
-    let pos: [Vec2<f64>; N] = core::array::from_fn(|i| {
-        let from_mid = (i as f64 - (N - 1) as f64 / 2.0).abs();
-        Vec2::new(
-            -span / 2.0 + i as f64 * half_dx,
-            -((N - 1) as f64 / 2.0 - from_mid) * dy,
-        )
-    });
-    let mut springs = Springs::new(Material::new(1e7, 0.0).expect("valid"));
-    for i in 0..N - 1 {
-        springs.connect_with_rest(N, i, i + 1, seg).expect("valid");
-    }
-    let mut inv = [N as f64; N];
-    inv[0] = 0.0;
-    inv[N - 1] = 0.0;
-    let settings = Settings {
-        integrator,
-        gravity: Vec2::new(0.0, -9.81),
-        damping: 2.0,
-        ..Settings::default()
-    };
-    let mut sys: Chain<N, { N - 1 }> = MassSpring::new(pos, inv, springs, settings).expect("valid");
-    let seconds = 10.0;
-    let (spent, _) = timed(
-        &mut sys,
-        300,
-        |s| {
-            s.step(1.0 / 30.0).expect("stable");
-        },
-        |_| 0.0,
-    );
-    let a = catenary_a(span, length);
-    let c = -a * (span / (2.0 * a)).cosh();
-    let sag = -(a + c);
-    let err = sys
-        .positions()
-        .iter()
-        .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
-        .fold(0.0, f64::max);
-    (spent / seconds, err)
+    let start = Instant::now();
+    let sys = chain_between_pins::<40, 39>(4.0, 5.0, 1e7, integrator, 300, 1.0 / 30.0);
+    let spent = start.elapsed().as_nanos() as f64;
+    (spent / 10.0, catenary_sag_error(sys.positions(), 4.0, 5.0))
 }
 
 pub fn run(run: &mut Run) {

@@ -1,7 +1,10 @@
 //! Exact references shared by the tests and the measuring examples.
 #![allow(dead_code)]
 
-use dunas::{Bezier, Point, Scalar, Vec2};
+use dunas::shape::Line;
+use dunas::spring::{Material, Springs};
+use dunas::system::Settings;
+use dunas::{Bezier, Integrator, MassSpring, Point, Scalar, Vec2};
 
 /// Control points on a grid of `1 / DENOM`: exactly representable in f32, f64 and Q16.
 pub const DENOM: i64 = 16;
@@ -195,5 +198,60 @@ pub fn sharpest_corner(line: &[Vec2<f64>]) -> f64 {
             (la > 1e-9 && lb > 1e-9)
                 .then(|| (a.dot(b) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees())
         })
+        .fold(0.0, f64::max)
+}
+
+/// A chain of `N` particles (total mass 1, stiffness `k`) hanging from pins at (±span/2, 0),
+/// started on a V of the right length so its springs begin at rest, stepped `steps` times by
+/// `dt` with `integrator` and linear damping 2.
+pub fn chain_between_pins<const N: usize, const CAP: usize>(
+    span: f64,
+    length: f64,
+    k: f64,
+    integrator: Integrator,
+    steps: usize,
+    dt: f64,
+) -> MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>> {
+    let seg = length / (N - 1) as f64;
+    let half_dx = span / 2.0 / ((N - 1) as f64 / 2.0);
+    let dy = (seg * seg - half_dx * half_dx).sqrt();
+    let pos: [Vec2<f64>; N] = core::array::from_fn(|i| {
+        let from_mid = (i as f64 - (N - 1) as f64 / 2.0).abs();
+        Vec2::new(
+            -span / 2.0 + i as f64 * half_dx,
+            -((N - 1) as f64 / 2.0 - from_mid) * dy,
+        )
+    });
+    let mut springs = Springs::new(Material::new(k, 0.0).expect("valid material"));
+    for i in 0..N - 1 {
+        springs
+            .connect_with_rest(N, i, i + 1, seg)
+            .expect("valid spring");
+    }
+    let mut inv = [N as f64; N];
+    inv[0] = 0.0;
+    inv[N - 1] = 0.0;
+    let settings = Settings {
+        integrator,
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    };
+    let mut sys = MassSpring::new(pos, inv, springs, settings).expect("valid chain");
+    for _ in 0..steps {
+        sys.step(dt).expect("stable");
+    }
+    sys
+}
+
+/// The largest vertical distance of `points` to the catenary hanging from (±span/2, 0) with
+/// the given length, relative to the catenary's sag.
+pub fn catenary_sag_error(points: &[Vec2<f64>], span: f64, length: f64) -> f64 {
+    let a = catenary_a(span, length);
+    let c = -a * (span / (2.0 * a)).cosh();
+    let sag = -(a + c);
+    points
+        .iter()
+        .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
         .fold(0.0, f64::max)
 }
