@@ -136,8 +136,9 @@ fn flush_tiny<P: Point>(v: &mut P, limit: P::Scalar) -> bool {
     for d in 0..P::DIM {
         let c = v.coord(d);
         let a = c.abs();
-        if !P::Scalar::FIXED_POINT && a < tiny {
-            v.set_coord(d, P::Scalar::ZERO);
+        if !P::Scalar::FIXED_POINT {
+            // A select, not a branch: the loop stays branch-free.
+            v.set_coord(d, if a < tiny { P::Scalar::ZERO } else { c });
         }
         ok &= (a <= limit) & c.is_finite();
     }
@@ -560,8 +561,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Choice> MassSpring<P, Sh, T
         let (x, v) = (Sh::flat_mut(&mut self.pos), Sh::flat_mut(&mut self.vel));
         let w = Sh::flat(&self.inv_mass);
         for (((x, v), a), &w) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&a)).zip(w) {
-            // Pinned particles neither accelerate nor move: skip their multiplications.
-            if w <= P::Scalar::ZERO {
+            // Pinned particles neither accelerate nor move: skip their multiplications where
+            // they are costly (fixed point); floats keep a branch-free, vectorisable loop.
+            if P::Scalar::FIXED_POINT && w <= P::Scalar::ZERO {
                 continue;
             }
             if symplectic {
