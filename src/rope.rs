@@ -16,7 +16,7 @@ use crate::{Bezier, Error, Integrator, Point, Scalar};
 /// `rope.positions()` work directly. Drawing goes through [`sample`](Rope::sample), which
 /// smooths the particles into a curve with as many points as the buffer holds.
 ///
-/// State size in `f32` 2D: `24·N + 8·CAP + 36` bytes; 248 for 8 particles on a chain.
+/// State size in `f32` 2D: `20·N + 8·CAP + 40` bytes; 256 for 8 particles on a chain.
 ///
 /// ```
 /// use dunas::{Rope, Vec2, smooth::Smoothing, spring::Material, system::Settings};
