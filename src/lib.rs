@@ -97,7 +97,7 @@ pub mod shape;
 pub mod smooth;
 pub mod spring;
 pub mod system;
-mod timestep;
+pub mod timestep;
 #[cfg(all(feature = "xml", dunas_std))]
 pub mod xml;
 

@@ -8,8 +8,7 @@ use crate::Scalar;
 ///
 /// Curves, patches and samplers are generic over `Point`, so the same code draws a 2D rope
 /// in `Vec2<Q16>` and a 3D sail in `Vec3<f32>`. Samplers work one coordinate lane at a time
-/// through [`coord`](Point::coord) / [`set_coord`](Point::set_coord), which measured faster
-/// than whole-point arithmetic.
+/// through [`coord`](Point::coord) / [`set_coord`](Point::set_coord).
 pub trait Point:
     Copy
     + Default

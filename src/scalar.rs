@@ -96,15 +96,7 @@ pub trait Scalar:
         if self < other { self } else { other }
     }
     /// A small integer as a scalar (exact for `|i| <= 16383` in every format).
-    #[inline]
-    fn from_i16(i: i16) -> Self {
-        Self::ratio(i.unsigned_abs() as u32, 1).signed(i < 0)
-    }
-    /// `-self` when `negative`, else `self`.
-    #[inline]
-    fn signed(self, negative: bool) -> Self {
-        if negative { -self } else { self }
-    }
+    fn from_i16(i: i16) -> Self;
     /// `true` when the value is finite and `|self| <= SAFE_RANGE`.
     #[inline]
     fn in_safe_range(self) -> bool {

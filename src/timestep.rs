@@ -25,13 +25,20 @@ pub struct FixedTimestep<S> {
     accumulator: S,
 }
 
+/// The most fixed steps one frame may ask for: a clock whose `max_frame / step` is larger is
+/// refused, which also keeps `accumulator - step` from rounding back to the accumulator (a
+/// loop that would never end) in every format.
+pub const MAX_STEPS_PER_FRAME: u32 = 4096;
+
 impl<S: Scalar> FixedTimestep<S> {
     /// A clock with the given step (seconds) and longest frame it will catch up on.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] unless `0 < step <= max_frame`, both finite.
+    /// [`Error::InvalidParameter`] unless `0 < step <= max_frame`, both finite, and
+    /// `max_frame / step <= MAX_STEPS_PER_FRAME`.
     pub fn new(step: S, max_frame: S) -> Result<Self, Error> {
-        if step > S::ZERO && step <= max_frame && max_frame.is_finite() {
+        let fits = || (max_frame / step).ceil_count(usize::MAX) <= MAX_STEPS_PER_FRAME as usize;
+        if step > S::ZERO && step <= max_frame && max_frame.is_finite() && fits() {
             Ok(FixedTimestep {
                 step,
                 max_frame,
@@ -57,7 +64,8 @@ impl<S: Scalar> FixedTimestep<S> {
         };
         self.accumulator += frame;
         let mut steps = 0;
-        while self.accumulator >= self.step {
+        // Bounded even if rounding ever stopped the accumulator from shrinking.
+        while self.accumulator >= self.step && steps <= MAX_STEPS_PER_FRAME {
             self.accumulator -= self.step;
             steps += 1;
         }

@@ -323,6 +323,14 @@ fn fixed_timestep_clamps_hitches_and_ignores_bad_frames() {
         FixedTimestep::new(0.1f64, f64::NAN),
         Err(Error::InvalidParameter)
     );
+    // A step so small against the longest frame that `acc - step` would round to `acc`:
+    // refused, instead of a frame that never ends.
+    assert_eq!(
+        FixedTimestep::new(1e-10f32, 1.0),
+        Err(Error::InvalidParameter)
+    );
+    let mut fine = FixedTimestep::new(1.0f32 / 4096.0, 1.0).unwrap();
+    assert_eq!(fine.advance(1.0), 4096);
 }
 
 #[test]

@@ -44,6 +44,31 @@ fn timed<T>(
     (spent, samples)
 }
 
+/// Steps `sys` (substeps from stiffness) for `seconds` in frames of `dt`: CPU ns per
+/// simulated second and the period of `probe`'s oscillation.
+fn timed_period<const N: usize, const CAP: usize>(
+    sys: &mut Chain<N, CAP>,
+    dt: f64,
+    seconds: f64,
+    probe: impl FnMut(&Chain<N, CAP>) -> f64,
+) -> (f64, f64) {
+    let steps = (seconds / dt).round() as usize;
+    let (spent, xs) = timed(
+        sys,
+        steps,
+        |s| {
+            s.step(dt).expect("stable");
+        },
+        probe,
+    );
+    let samples: Vec<(f64, f64)> = xs
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| ((i + 1) as f64 * dt, x))
+        .collect();
+    (spent / seconds, period(&samples))
+}
+
 /// Damped oscillator ω0 = 10, ζ = 0.02: the largest deviation from the closed form over 2 s,
 /// relative to the amplitude, with a fixed step h (no substeps).
 fn oscillator(integrator: Integrator, h: f64) -> (f64, f64) {
@@ -95,22 +120,8 @@ fn pendulum(integrator: Integrator, dt: f64) -> (f64, f64) {
         ..Settings::default()
     };
     let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
-    let seconds = 8.0;
-    let steps = (seconds / dt).round() as usize;
-    let (spent, xs) = timed(
-        &mut sys,
-        steps,
-        |s| {
-            s.step(dt).expect("stable");
-        },
-        |s| s.positions()[1].x,
-    );
-    let samples: Vec<(f64, f64)> = xs
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| ((i + 1) as f64 * dt, x))
-        .collect();
-    (spent / seconds, (period(&samples) - exact).abs() / exact)
+    let (ns_per_s, measured) = timed_period(&mut sys, dt, 8.0, |s| s.positions()[1].x);
+    (ns_per_s, (measured - exact).abs() / exact)
 }
 
 /// Fundamental mode of a chain of 8 below a pin (automatic substeps): frequency error against
@@ -155,23 +166,10 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
         ..Settings::default()
     };
     let mut sys: Chain<{ N + 1 }, N> = MassSpring::new(pos, inv, springs, settings).expect("valid");
-    let seconds = 4.0 * 2.0 * PI / exact;
-    let steps = (seconds / dt).round() as usize;
-    let (spent, xs) = timed(
-        &mut sys,
-        steps,
-        |s| {
-            s.step(dt).expect("stable");
-        },
-        |s| s.positions()[N].x,
-    );
-    let samples: Vec<(f64, f64)> = xs
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| ((i + 1) as f64 * dt, x))
-        .collect();
-    let measured = 2.0 * PI / period(&samples);
-    (spent / seconds, (measured - exact).abs() / exact)
+    let (ns_per_s, measured_period) =
+        timed_period(&mut sys, dt, 4.0 * 2.0 * PI / exact, |s| s.positions()[N].x);
+    let measured = 2.0 * PI / measured_period;
+    (ns_per_s, (measured - exact).abs() / exact)
 }
 
 /// A chain of 40 settling between two pins: the sag error against the catenary after 10 s
