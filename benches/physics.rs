@@ -7,39 +7,45 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
-use dunas::sampler::BernsteinTable;
+use dunas::Settings;
+use dunas::integrator::{AnyIntegrator, ImplicitEuler, Xpbd};
+use dunas::sampler::{BernsteinTable, Sampler};
 use dunas::smooth::Smoothing;
 use dunas::spring::Material;
-use dunas::system::Settings;
-use dunas::{Cloth, Integrator, Rope, Vec2, Vec3};
+use dunas::{Bezier, Cloth, Rope, Vec2, Vec3};
 
-const INTEGRATORS: [(&str, Integrator); 6] = [
-    ("explicit_euler", Integrator::ExplicitEuler),
-    ("symplectic_euler", Integrator::SymplecticEuler),
-    ("verlet", Integrator::Verlet),
-    ("rk4", Integrator::Rk4),
+const INTEGRATORS: [(&str, AnyIntegrator); 6] = [
+    ("explicit_euler", AnyIntegrator::ExplicitEuler),
+    ("symplectic_euler", AnyIntegrator::SymplecticEuler),
+    ("verlet", AnyIntegrator::Verlet),
+    ("rk4", AnyIntegrator::Rk4),
     (
         "implicit_euler_cg8",
-        Integrator::ImplicitEuler { iterations: 8 },
+        AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 8 }),
     ),
-    ("xpbd_4", Integrator::Xpbd { substeps: 4 }),
+    ("xpbd_4", AnyIntegrator::Xpbd(Xpbd { substeps: 4 })),
 ];
 
 /// A swinging rope of `N` particles, 70 px long, the same material and mass at any `N`
 /// (stiffness per spring scales with `N - 1` so the whole rope stretches alike).
-fn rope<const N: usize, const CAP: usize>(integrator: Integrator) -> Rope<Vec2<f32>, N, CAP> {
+fn rope<const N: usize, const CAP: usize>(
+    integrator: AnyIntegrator,
+) -> Rope<Vec2<f32>, N, CAP, AnyIntegrator> {
     let settings = Settings {
-        integrator,
         gravity: Vec2::new(0.0, -200.0),
         damping: 0.1,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let k = 400.0 * (N - 1) as f32 / 7.0;
     let mut r = Rope::new(
         Vec2::new(0.0, 0.0),
         Vec2::new(70.0, 0.0),
         7.0,
-        Material::new(k, 2.0).unwrap(),
+        Material {
+            stiffness: k,
+            damping: 2.0,
+        },
         settings,
     )
     .unwrap();
@@ -50,14 +56,19 @@ fn rope<const N: usize, const CAP: usize>(integrator: Integrator) -> Rope<Vec2<f
     r
 }
 
-fn cloth<const U: usize, const V: usize>(integrator: Integrator) -> Cloth<Vec3<f32>, U, V> {
+fn cloth<const U: usize, const V: usize>(
+    integrator: AnyIntegrator,
+) -> Cloth<Vec3<f32>, U, V, AnyIntegrator> {
     let settings = Settings {
-        integrator,
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 0.2,
         ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let m = Material {
+        stiffness: 300.0,
+        damping: 0.5,
     };
-    let m = Material::new(300.0, 0.5).unwrap();
     let mut c = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(2.0, 0.0, 0.0),
@@ -114,7 +125,7 @@ fn frames(c: &mut Criterion) {
     let h = 1.0 / 240.0;
     let mut g = c.benchmark_group("frame");
     let mut out = [Vec2::<f32>::default(); 64];
-    let r8 = rope::<8, 7>(Integrator::SymplecticEuler);
+    let r8 = rope::<8, 7>(AnyIntegrator::SymplecticEuler);
     bench_on(&mut g, "rope8_bspline64", &r8, |r| {
         r.step_once(h, ()).unwrap();
         r.sample(Smoothing::BSpline, &mut out).unwrap()
@@ -122,13 +133,15 @@ fn frames(c: &mut Criterion) {
     let table = BernsteinTable::<f32, 8, 64>::new();
     bench_on(&mut g, "rope8_bezier_table64", &r8, |r| {
         r.step_once(h, ()).unwrap();
-        r.sample_with(&table, &mut out).unwrap()
+        table
+            .sample(&Bezier::new(*r.position_array()).unwrap(), &mut out)
+            .unwrap()
     });
     bench_on(&mut g, "rope8_bezier_decasteljau64", &r8, |r| {
         r.step_once(h, ()).unwrap();
         r.sample(Smoothing::Bezier, &mut out).unwrap()
     });
-    let r30 = rope::<30, 29>(Integrator::SymplecticEuler);
+    let r30 = rope::<30, 29>(AnyIntegrator::SymplecticEuler);
     bench_on(&mut g, "rope30_polyline64", &r30, |r| {
         r.step_once(h, ()).unwrap();
         r.sample(Smoothing::Polyline, &mut out).unwrap()

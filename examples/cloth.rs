@@ -12,9 +12,9 @@ mod raster;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use dunas::Settings;
 use dunas::force::Wind;
 use dunas::spring::Material;
-use dunas::system::Settings;
 use dunas::{Cloth, Vec3};
 use raster::{Camera, Image, lambert};
 
@@ -81,9 +81,18 @@ fn sail<const U: usize, const V: usize>(
         ..Settings::default()
     };
     let materials = [
-        Material::new(900.0, 0.6).expect("valid"),
-        Material::new(300.0, 0.2).expect("valid"),
-        Material::new(60.0, 0.05).expect("valid"),
+        Material {
+            stiffness: 900.0,
+            damping: 0.6,
+        },
+        Material {
+            stiffness: 300.0,
+            damping: 0.2,
+        },
+        Material {
+            stiffness: 60.0,
+            damping: 0.05,
+        },
     ];
     let mut cloth = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),

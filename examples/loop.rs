@@ -3,11 +3,11 @@
 //!
 //! Run: `cargo run --release --example loop` (prints three frames as text).
 
+use dunas::Settings;
 use dunas::ascii::{Canvas, View};
 use dunas::force::Wind;
 use dunas::smooth::{self, Smoothing};
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
 use dunas::{Rope, Vec2};
 
 const N: usize = 12;
@@ -20,9 +20,14 @@ fn main() {
         Vec2::new(12.0 * a.cos(), 12.0 * a.sin() - 12.0)
     });
     // Loop springs between neighbours plus bending springs two apart keep the hoop round.
-    let mut springs =
-        Springs::<f32, 24>::closed_loop(&ring, Material::new(4000.0, 2.0).expect("valid"))
-            .expect("valid");
+    let mut springs = Springs::<f32, 24>::closed_loop(
+        &ring,
+        Material {
+            stiffness: 4000.0,
+            damping: 2.0,
+        },
+    )
+    .expect("valid");
     for i in 0..N {
         springs
             .connect(&ring, i, (i + 2) % N)

@@ -7,10 +7,10 @@
 //!
 //! Run: `cargo run --release --example merlin` (prints three frames as text).
 
+use dunas::Settings;
 use dunas::ascii::{Canvas, View};
 use dunas::smooth::Smoothing;
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
 use dunas::{Rope, Vec2};
 
 const N: usize = 8;
@@ -19,7 +19,10 @@ const H: usize = 18;
 
 fn rope(hub: bool) -> Rope<Vec2<f32>, N, 13> {
     let pos: [Vec2<f32>; N] = core::array::from_fn(|i| Vec2::new(-6.0 * i as f32, -4.0 * i as f32));
-    let material = Material::new(2500.0, 2.0).expect("valid material");
+    let material = Material {
+        stiffness: 2500.0,
+        damping: 2.0,
+    };
     let springs = if hub {
         Springs::hub(&pos, material)
     } else {

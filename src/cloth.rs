@@ -3,11 +3,12 @@
 
 use core::ops::{Deref, DerefMut};
 
-use crate::integrator::Choice;
+use crate::error::check_positive;
+use crate::integrator::{Integrator, SymplecticEuler};
 use crate::shape::Grid;
 use crate::spring::{GridSprings, Material};
-use crate::system::{MassSpring, Settings};
-use crate::{Error, Integrator, Patch, Point, Scalar, Vec3};
+use crate::system::MassSpring;
+use crate::{Error, Patch, Point, Scalar, Settings, Vec3};
 
 /// A `U × V` cloth: a sail, a flag, a cape. The springs are implied by the grid
 /// ([`GridSprings`]), so an 8×8 sail in `f32` is under 2 KiB of state.
@@ -16,10 +17,10 @@ use crate::{Error, Integrator, Patch, Point, Scalar, Vec3};
 /// index `j * U + i`. Drawing goes through the [`patch`](Cloth::patch) of its particles.
 ///
 /// ```
-/// use dunas::{Cloth, Vec3, spring::Material, system::Settings};
+/// use dunas::prelude::*;
 ///
 /// let settings = Settings { gravity: Vec3::new(0.0, -9.8, 0.0), damping: 0.5, ..Settings::default() };
-/// let m = Material::new(200.0, 0.2)?;
+/// let m = Material { stiffness: 200.0, damping: 0.2 };
 /// let mut sail: Cloth<Vec3<f32>, 8, 8> = Cloth::rectangle(
 ///     Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0),
 ///     2.0, [m, m, m], settings,
@@ -32,18 +33,19 @@ use crate::{Error, Integrator, Patch, Point, Scalar, Vec3};
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Cloth<P: Point, const U: usize, const V: usize, I = Integrator> {
+pub struct Cloth<P: Point, const U: usize, const V: usize, I = SymplecticEuler> {
     system: MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>, I>,
 }
 
-impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
+impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> {
     /// A flat cloth with particle `(i, j)` at `origin + du·i/(U-1) + dv·j/(V-1)`: `du` and `dv`
     /// are the whole edges. Total `mass` split evenly, nothing pinned; `materials` are the
     /// structural, shear and bending springs, relaxed at the initial spacing.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive mass, [`Error::ZeroRestLength`] for a
-    /// zero edge, and the errors of [`MassSpring::new`].
+    /// [`Error::InvalidParameter`] for a non-positive mass; [`Error::ZeroRestLength`] for a
+    /// zero edge, naming the first spring along it (`0`-`1` for `du`, `0`-`U` for `dv`,
+    /// `0`-`U+1` or `1`-`U` for a diagonal); and the other errors of [`MassSpring::new`].
     pub fn rectangle(
         origin: P,
         du: P,
@@ -58,9 +60,7 @@ impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
                 "a cloth needs at least 3×3 particles (bending springs)"
             )
         };
-        if !(mass > P::Scalar::ZERO && mass.is_finite()) {
-            return Err(Error::InvalidParameter);
-        }
+        check_positive(mass)?;
         let step_u = du * P::Scalar::ratio(1, (U - 1) as u32);
         let step_v = dv * P::Scalar::ratio(1, (V - 1) as u32);
         let positions: [[P; U]; V] = core::array::from_fn(|j| {
@@ -78,13 +78,6 @@ impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
             shear: materials[1],
             bending: materials[2],
         };
-        let tiny = P::Scalar::EPSILON;
-        if springs.rest_u <= tiny
-            || springs.rest_v <= tiny
-            || springs.rest_diagonals.iter().any(|&r| r <= tiny)
-        {
-            return Err(Error::ZeroRestLength { a: 0, b: 1 });
-        }
         let w = P::Scalar::ratio((U * V) as u32, 1) / mass;
         let system = MassSpring::new(positions, [[w; U]; V], springs, settings)?;
         Ok(Cloth { system })
@@ -95,9 +88,7 @@ impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
     /// # Errors
     /// [`Error::IndexOutOfRange`] for `j >= V`.
     pub fn pin_row(&mut self, j: usize) -> Result<(), Error> {
-        if j >= V {
-            return Err(Error::IndexOutOfRange { index: j, len: V });
-        }
+        crate::error::check_index(j, V)?;
         for i in 0..U {
             self.system.set_inv_mass(j * U + i, P::Scalar::ZERO)?;
         }
@@ -109,9 +100,7 @@ impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
     /// # Errors
     /// [`Error::IndexOutOfRange`] for `i >= U`.
     pub fn pin_column(&mut self, i: usize) -> Result<(), Error> {
-        if i >= U {
-            return Err(Error::IndexOutOfRange { index: i, len: U });
-        }
+        crate::error::check_index(i, U)?;
         for j in 0..V {
             self.system.set_inv_mass(j * U + i, P::Scalar::ZERO)?;
         }
@@ -127,7 +116,7 @@ impl<P: Point, const U: usize, const V: usize, I: Choice> Cloth<P, U, V, I> {
     }
 }
 
-impl<S: Scalar, const U: usize, const V: usize, I: Choice> Cloth<Vec3<S>, U, V, I> {
+impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Cloth<Vec3<S>, U, V, I> {
     /// Samples the smoothed surface: an `nu × nv` grid of positions and unit normals (see
     /// [`Patch::sample_grid_with_normals`]); returns the point count.
     ///

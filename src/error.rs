@@ -48,6 +48,19 @@ pub enum Error {
     /// The simulation blew up during a step (a position or velocity became non-finite or left
     /// the scene bounds). The state before the step was kept.
     Diverged,
+    /// A fixed-point ([`Q16`](crate::Q16)) force or acceleration reached the format's limit
+    /// during a step, so the step would have clamped it silently. The state before the step
+    /// was kept.
+    Saturated,
+    /// The springs are so stiff that even [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS)
+    /// substeps would advance no time in this format (the scene would freeze). Nothing
+    /// changed.
+    TooStiff,
+    /// The call needs a free particle, and this one is pinned (inverse mass 0).
+    Pinned {
+        /// The particle.
+        index: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -75,6 +88,13 @@ impl fmt::Display for Error {
             Error::Diverged => {
                 f.write_str("the simulation diverged; the state before the step was kept")
             }
+            Error::Saturated => f.write_str(
+                "a fixed-point force reached the format's limit; the state before the step was kept",
+            ),
+            Error::TooStiff => f.write_str(
+                "the springs are too stiff for the substep limit in this format; nothing changed",
+            ),
+            Error::Pinned { index } => write!(f, "particle {index} is pinned"),
         }
     }
 }
@@ -93,4 +113,31 @@ pub(crate) fn check_points<P: crate::Point>(points: &[P]) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// `Ok(x)` when `x` is finite and `> 0`, else [`Error::InvalidParameter`].
+pub(crate) fn check_positive<S: crate::Scalar>(x: S) -> Result<S, Error> {
+    if x > S::ZERO && x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Error::InvalidParameter)
+    }
+}
+
+/// `Ok(x)` when `x` is finite and `>= 0`, else [`Error::InvalidParameter`].
+pub(crate) fn check_non_negative<S: crate::Scalar>(x: S) -> Result<S, Error> {
+    if x >= S::ZERO && x.is_finite() {
+        Ok(x)
+    } else {
+        Err(Error::InvalidParameter)
+    }
+}
+
+/// `Ok(index)` when `index < len`, else [`Error::IndexOutOfRange`].
+pub(crate) fn check_index(index: usize, len: usize) -> Result<usize, Error> {
+    if index < len {
+        Ok(index)
+    } else {
+        Err(Error::IndexOutOfRange { index, len })
+    }
 }

@@ -78,6 +78,7 @@ mod math;
 
 mod aabb;
 pub mod ascii;
+mod catenary;
 mod cloth;
 pub mod curve;
 mod error;
@@ -88,14 +89,17 @@ pub mod integrator;
 pub mod lod;
 pub mod patch;
 pub mod point;
+pub mod prelude;
 #[cfg(feature = "fixed")]
 mod q16;
 mod rope;
 pub mod sampler;
 pub mod scalar;
+mod settings;
 pub mod shape;
 pub mod smooth;
 pub mod spring;
+mod substeps;
 pub mod system;
 pub mod timestep;
 #[cfg(all(feature = "xml", dunas_std))]
@@ -112,6 +116,9 @@ pub use point::{Point, Vec2, Vec3};
 pub use q16::Q16;
 pub use rope::Rope;
 pub use scalar::Scalar;
+pub use settings::{Accuracy, Settings};
+pub use smooth::Smoothing;
+pub use spring::Material;
 pub use system::MassSpring;
 pub use timestep::FixedTimestep;
 

@@ -2,50 +2,55 @@
 
 use core::ops::{Deref, DerefMut};
 
-use crate::integrator::Choice;
-use crate::sampler::Sampler;
+use crate::catenary::Catenary;
+use crate::error::{check_points, check_positive};
+use crate::integrator::{Integrator, SymplecticEuler};
 use crate::shape::Line;
 use crate::smooth::{self, Smoothing};
 use crate::spring::{Material, Springs};
-use crate::system::{MassSpring, Settings};
-use crate::{Bezier, Error, Integrator, Point, Scalar};
+use crate::system::MassSpring;
+use crate::{Error, Point, Scalar, Settings};
 
-/// A rope of `N` particles with room for `CAP` springs of one material.
+/// A rope of `N` particles with room for `CAP` springs of one material (by default `N`: the
+/// chain's `N - 1` and one spare, for a loop).
 ///
 /// It derefs to its [`MassSpring`], so `rope.step(dt)`, `rope.set_position(0, hand)` and
 /// `rope.positions()` work directly. Drawing goes through [`sample`](Rope::sample), which
 /// smooths the particles into a curve with as many points as the buffer holds.
 ///
-/// State size in `f32` 2D: `20·N + 8·CAP + 40` bytes; 256 for 8 particles on a chain.
+/// Masses are lumped the usual way: a rope of mass `m` gives each inner particle
+/// `m / (N - 1)` and each end half that, so the masses add up to `m`; a pinned end's share
+/// is carried by whatever holds it.
+///
+/// State size in `f32` 2D: `20·N + 8·CAP + 44` bytes; 276 for 8 particles.
 ///
 /// ```
-/// use dunas::{Rope, Vec2, smooth::Smoothing, spring::Material, system::Settings};
+/// use dunas::prelude::*;
 ///
 /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), damping: 0.2, ..Settings::default() };
-/// let mut rope: Rope<Vec2<f32>, 8, 7> =
-///     Rope::new(Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0), 1.0, Material::new(400.0, 0.5)?, settings)?;
+/// let material = Material { stiffness: 400.0, damping: 0.5 };
+/// let mut rope: Rope<Vec2<f32>, 8> = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0), 1.0, material, settings)?;
 /// for _ in 0..60 {
 ///     rope.step(1.0 / 60.0)?;
 /// }
 /// let mut screen = [Vec2::default(); 32];
-/// let n = rope.sample(Smoothing::Bezier, &mut screen)?;
+/// let n = rope.sample(Smoothing::BSpline, &mut screen)?;
 /// assert_eq!(screen[0], Vec2::new(0.0, 0.0)); // still pinned
 /// assert!(screen[n - 1].y < -1.0); // the free end swung down
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Rope<P: Point, const N: usize, const CAP: usize, I = Integrator> {
+pub struct Rope<P: Point, const N: usize, const CAP: usize = N, I = SymplecticEuler> {
     system: MassSpring<P, Line<N>, Springs<P::Scalar, CAP>, I>,
 }
 
-impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
-    /// A straight rope from `start` (pinned) to `end`, of total `mass` split evenly, its
-    /// springs relaxed at the initial spacing.
+impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, I> {
+    /// A straight rope from `start` (pinned) to `end` of total `mass`, its springs relaxed
+    /// at the initial spacing.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive mass, [`Error::CapacityExceeded`] when
-    /// `CAP < N - 1`, [`Error::ZeroRestLength`] when `start == end`, and the errors of
-    /// [`MassSpring::new`].
+    /// [`Error::InvalidParameter`] for a non-positive or non-finite mass,
+    /// [`Error::ZeroRestLength`] when `start == end`, and the errors of [`MassSpring::new`].
     pub fn new(
         start: P,
         end: P,
@@ -53,18 +58,110 @@ impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
         material: Material<P::Scalar>,
         settings: Settings<P, I>,
     ) -> Result<Self, Error> {
-        const { assert!(N >= 2, "a rope needs at least 2 particles") };
-        crate::error::check_points(&[start, end])?;
-        if !(mass > P::Scalar::ZERO && mass.is_finite()) {
-            return Err(Error::InvalidParameter);
-        }
+        check_points(&[start, end])?;
         let last = (N - 1) as u32;
         let positions: [P; N] =
             core::array::from_fn(|i| start.lerp(end, P::Scalar::ratio(i as u32, last)));
-        let w = P::Scalar::ratio(N as u32, 1) / mass;
-        let mut inv_mass = [w; N];
-        inv_mass[0] = P::Scalar::ZERO;
         let springs = Springs::chain(&positions, material)?;
+        Self::pinned_chain(positions, mass, springs, settings)
+    }
+
+    /// A rope of length `length` hanging under gravity from `start` (pinned) to `end`
+    /// (pinned): a rope bridge, a power line, a washing line. The particles start on the
+    /// catenary through both ends, at equal arc lengths, with each spring's rest length
+    /// `length / (N - 1)`, so the rope hangs in its catenary from the first frame; its
+    /// springs then stretch under the rope's weight by `m·g / k` at most.
+    ///
+    /// The catenary is solved once, in `f64` arithmetic (no `std` or `libm` needed).
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    ///
+    /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), ..Settings::default() };
+    /// let line: Rope<Vec2<f32>, 12> = Rope::hanging(
+    ///     Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0), 12.0, 1.0, Material { stiffness: 2000.0, damping: 1.0 }, settings,
+    /// )?;
+    /// let lowest = line.positions().iter().map(|p| p.y).fold(0.0, f32::min);
+    /// assert!((lowest + 3.0).abs() < 0.2); // a 12 m line over 10 m sags about 3 m
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a non-positive mass, a zero gravity, ends on one
+    /// vertical (gravity's direction), or a `length` not longer than the distance between
+    /// the ends; the errors of [`MassSpring::new`].
+    pub fn hanging(
+        start: P,
+        end: P,
+        length: P::Scalar,
+        mass: P::Scalar,
+        material: Material<P::Scalar>,
+        settings: Settings<P, I>,
+    ) -> Result<Self, Error> {
+        check_points(&[start, end])?;
+        check_positive(length)?;
+        settings.check()?;
+        let coords = |p: P| -> [f64; 3] {
+            core::array::from_fn(|d| if d < P::DIM { p.coord(d).to_f64() } else { 0.0 })
+        };
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let (chord, gravity) = (coords(end - start), coords(settings.gravity));
+        let g = dot(gravity, gravity);
+        if g <= 0.0 {
+            return Err(Error::InvalidParameter);
+        }
+        // Up is against gravity; across is the chord's part square to it.
+        let up: [f64; 3] = core::array::from_fn(|d| -gravity[d] / crate::catenary::sqrt(g));
+        let rise = dot(chord, up);
+        let across: [f64; 3] = core::array::from_fn(|d| chord[d] - rise * up[d]);
+        let span = crate::catenary::sqrt(dot(across, across));
+        let length_f = length.to_f64();
+        if span <= 1e-9 * length_f || length_f * length_f <= dot(chord, chord) {
+            return Err(Error::InvalidParameter);
+        }
+        let curve = Catenary::through(span, rise, length_f);
+        let mut positions = [start; N];
+        for (i, p) in positions.iter_mut().enumerate() {
+            let (x, y) = curve.at(length_f * i as f64 / (N - 1) as f64);
+            for d in 0..P::DIM {
+                let offset = across[d] / span * x + up[d] * y;
+                p.set_coord(d, start.coord(d) + P::Scalar::from_f64(offset));
+            }
+        }
+        positions[N - 1] = end;
+        check_points(&positions)?;
+        let rest = length / P::Scalar::from_i16((N - 1).min(i16::MAX as usize) as i16);
+        let mut springs = Springs::new(material);
+        for i in 0..N - 1 {
+            springs.connect_with_rest(N, i, i + 1, rest)?;
+        }
+        let mut rope = Self::pinned_chain(positions, mass, springs, settings)?;
+        rope.system.set_inv_mass(N - 1, P::Scalar::ZERO)?;
+        Ok(rope)
+    }
+
+    /// The particles with lumped masses and the first pinned.
+    fn pinned_chain(
+        positions: [P; N],
+        mass: P::Scalar,
+        springs: Springs<P::Scalar, CAP>,
+        settings: Settings<P, I>,
+    ) -> Result<Self, Error> {
+        const {
+            assert!(N >= 2, "a rope needs at least 2 particles");
+            assert!(
+                CAP + 1 >= N,
+                "a rope of N particles needs room for N - 1 springs"
+            );
+        };
+        check_positive(mass)?;
+        // Inner particles carry m/(N-1), the ends half that.
+        let inner = P::Scalar::ratio((N - 1) as u32, 1) / mass;
+        let end = inner * P::Scalar::from_i16(2);
+        let mut inv_mass = [inner; N];
+        inv_mass[0] = P::Scalar::ZERO;
+        inv_mass[N - 1] = end;
+        check_positive(end)?;
         Self::from_parts(positions, inv_mass, springs, settings)
     }
 
@@ -83,7 +180,9 @@ impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
         })
     }
 
-    /// Samples the smoothed rope into `out` and returns the count (see [`smooth::sample`]).
+    /// Draws the rope: the curve that `smoothing` makes of the particles, sampled into `out`
+    /// (see [`smooth::sample`] for the count and the `Q16` path). The one way to draw a
+    /// rope; the first and last points are the end particles.
     ///
     /// # Errors
     /// [`Error::BufferTooSmall`] when `out` holds fewer than 2 points.
@@ -91,32 +190,16 @@ impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
         smooth::sample(smoothing, self.system.position_array(), out)
     }
 
-    /// Samples the particles as one Bézier curve with a chosen sampler, e.g. a
-    /// [`BernsteinTable`](crate::sampler::BernsteinTable) built once for the frame's point count.
-    ///
-    /// # Errors
-    /// As the sampler's [`sample`](Sampler::sample).
-    pub fn sample_with(&self, sampler: &impl Sampler<P, N>, out: &mut [P]) -> Result<usize, Error> {
-        sampler.sample(&self.curve()?, out)
-    }
-
-    /// The particles as one Bézier curve.
-    ///
-    /// # Errors
-    /// Never after a successful step (the step keeps positions in range).
-    pub fn curve(&self) -> Result<Bezier<P, N>, Error> {
-        Bezier::new(*self.system.position_array())
-    }
-
     /// Length of the drawn curve within `accuracy`.
     ///
     /// # Errors
-    /// As [`curve`](Self::curve).
+    /// [`Error::InvalidParameter`] for a non-positive accuracy.
     pub fn drawn_length(
         &self,
         smoothing: Smoothing,
         accuracy: P::Scalar,
     ) -> Result<P::Scalar, Error> {
+        check_positive(accuracy)?;
         smooth::length(smoothing, self.system.position_array(), accuracy)
     }
 
@@ -126,12 +209,14 @@ impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
     /// The springs pull on the control polygon, which is longer than the smoothed curve
     /// wherever the rope bends (a rope sagging between two pins; one hanging straight needs
     /// nothing). Four rounds of: settle for `settle_steps` steps of `dt`, measure, rescale;
-    /// then a last settle and measure for the residual.
-    /// Meant for load time. The tests hold the residual under 1% for a rope sagging between
-    /// two pins with each smoothing.
+    /// then a last settle and measure for the residual. Meant for load time. The tests hold
+    /// the residual under 1% for a rope sagging between two pins with each smoothing.
+    ///
+    /// All or nothing: on an error the rope is as it was before the call.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive target, and the errors of
+    /// [`Error::InvalidParameter`] for a target that is not positive or is beyond
+    /// [`Scalar::SAFE_RANGE`], or a `dt` that is not positive; the errors of
     /// [`step`](MassSpring::step).
     pub fn calibrate_length(
         &mut self,
@@ -140,23 +225,38 @@ impl<P: Point, const N: usize, const CAP: usize, I: Choice> Rope<P, N, CAP, I> {
         dt: P::Scalar,
         settle_steps: u32,
     ) -> Result<P::Scalar, Error> {
-        if !(target > P::Scalar::ZERO && target.is_finite()) {
+        check_positive(dt)?;
+        if check_positive(target)? > P::Scalar::SAFE_RANGE {
             return Err(Error::InvalidParameter);
         }
+        let before = self.system.clone();
+        let result = self.calibrate(smoothing, target, dt, settle_steps);
+        if result.is_err() {
+            self.system = before;
+        }
+        result
+    }
+
+    fn calibrate(
+        &mut self,
+        smoothing: Smoothing,
+        target: P::Scalar,
+        dt: P::Scalar,
+        settle_steps: u32,
+    ) -> Result<P::Scalar, Error> {
         let accuracy = target * P::Scalar::ratio(1, 10_000);
+        let mut drawn = P::Scalar::ZERO;
         for round in 0..5 {
+            if round > 0 && drawn > P::Scalar::ZERO {
+                let factor = target / drawn;
+                self.system.with_topology(|s| s.scale_rest(factor))?;
+            }
             for _ in 0..settle_steps {
                 self.system.step(dt)?;
             }
-            let drawn = self.drawn_length(smoothing, accuracy)?;
-            if round == 4 {
-                return Ok((drawn - target).abs() / target);
-            }
-            if drawn > P::Scalar::ZERO {
-                self.system.topology_mut().scale_rest(target / drawn);
-            }
+            drawn = self.drawn_length(smoothing, accuracy)?;
         }
-        Ok(P::Scalar::ZERO)
+        Ok((drawn - target).abs() / target)
     }
 }
 

@@ -5,6 +5,7 @@
 //! from a particle to itself, a repeated pair, a zero rest length or more springs than the
 //! compile-time capacity is an [`Error`] then, never later in the game loop.
 
+use crate::error::{check_index, check_non_negative, check_positive};
 use crate::{Error, Point, Scalar};
 
 /// A spring between particles `a` and `b`, relaxed at length `rest`.
@@ -18,30 +19,34 @@ pub struct Spring<S> {
     pub rest: S,
 }
 
-/// Stiffness and damping shared by a group of springs.
+/// Stiffness and damping shared by a group of springs. Written with named fields, so the
+/// two numbers cannot be swapped unnoticed; checked when the springs enter a system
+/// ([`MassSpring::new`](crate::MassSpring::new)) or a topology's setter.
+///
+/// ```
+/// use dunas::Material;
+/// let rope = Material { stiffness: 3000.0, damping: 1.0 };
+/// assert!(rope.check().is_ok());
+/// assert!(Material { stiffness: -1.0, damping: 1.0 }.check().is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material<S> {
-    /// Hooke constant `k`, force per unit of stretch (> 0).
+    /// Hooke constant `k`, force per unit of stretch (finite, `> 0`).
     pub stiffness: S,
-    /// Damping `c` along the spring, force per unit of closing speed (>= 0).
+    /// Damping `c` along the spring, force per unit of closing speed (finite, `>= 0`).
     pub damping: S,
 }
 
 impl<S: Scalar> Material<S> {
-    /// A material; `stiffness` must be positive and finite, `damping` non-negative and finite.
+    /// Checks both numbers.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] otherwise.
-    pub fn new(stiffness: S, damping: S) -> Result<Self, Error> {
-        let ok = stiffness > S::ZERO
-            && stiffness.is_finite()
-            && damping >= S::ZERO
-            && damping.is_finite();
-        if ok {
-            Ok(Material { stiffness, damping })
-        } else {
-            Err(Error::InvalidParameter)
-        }
+    /// [`Error::InvalidParameter`] unless the stiffness is positive and finite and the
+    /// damping non-negative and finite.
+    pub fn check(&self) -> Result<(), Error> {
+        check_positive(self.stiffness)?;
+        check_non_negative(self.damping)?;
+        Ok(())
     }
 }
 
@@ -85,15 +90,28 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
     }
 
     /// Changes the shared material.
-    pub fn set_material(&mut self, material: Material<S>) {
+    ///
+    /// # Errors
+    /// As [`Material::check`]; the old material stays.
+    pub fn set_material(&mut self, material: Material<S>) -> Result<(), Error> {
+        material.check()?;
         self.material = material;
+        Ok(())
     }
 
     /// Multiplies every rest length by `factor` (used to calibrate a rope's drawn length).
-    pub(crate) fn scale_rest(&mut self, factor: S) {
+    ///
+    /// # Errors
+    /// [`Error::ZeroRestLength`] for the first spring whose new rest length would not be a
+    /// valid one (see [`check_rest`]); nothing changes then.
+    pub(crate) fn scale_rest(&mut self, factor: S) -> Result<(), Error> {
+        for s in self.list.iter() {
+            check_rest(s.a as usize, s.b as usize, s.rest * factor)?;
+        }
         for s in self.list.iter_mut() {
             s.rest = s.rest * factor;
         }
+        Ok(())
     }
 
     /// Connects `a` and `b` with the given rest length; `len` is the particle count.
@@ -109,9 +127,7 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         rest: S,
     ) -> Result<(), Error> {
         for index in [a, b] {
-            if index >= len || index > u16::MAX as usize {
-                return Err(Error::IndexOutOfRange { index, len });
-            }
+            check_index(index, len.min(u16::MAX as usize + 1))?;
         }
         let (lo, hi) = if a < b {
             (a as u16, b as u16)
@@ -126,9 +142,7 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         {
             return Err(Error::DuplicateSpring { a, b });
         }
-        if !(rest > S::EPSILON && rest.is_finite()) {
-            return Err(Error::ZeroRestLength { a, b });
-        }
+        check_rest(a, b, rest)?;
         self.list
             .push(Spring {
                 a: a as u16,
@@ -213,7 +227,8 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
     }
 
     /// "Surface springs" along a row: every pair at most `k` apart in index (the thesis's
-    /// rigidity factor; `k = 1` is the chain, `k = 2` adds bending springs).
+    /// rigidity factor; `k = 1` is the chain, `k = 2` adds bending springs). A `k` past the
+    /// row's length is clamped to `len - 1` (every pair).
     ///
     /// # Errors
     /// As [`connect_with_rest`](Self::connect_with_rest); [`Error::InvalidParameter`] for `k = 0`.
@@ -226,8 +241,8 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
             return Err(Error::InvalidParameter);
         }
         let mut s = Springs::new(material);
-        for d in 1..=k {
-            for i in 0..positions.len().saturating_sub(d) {
+        for d in 1..=k.min(positions.len().saturating_sub(1)) {
+            for i in 0..positions.len() - d {
                 s.connect(positions, i, i + d)?;
             }
         }
@@ -236,11 +251,12 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
 
     /// "Surface springs" on a `u × v` grid (flat index `j * u + i`): every pair whose
     /// shortest path along grid edges has at most `k` edges. `k = 1` gives the structural
-    /// springs, `k = 2` adds shear (diagonal) and bending (two apart) springs.
+    /// springs, `k = 2` adds shear (diagonal) and bending (two apart) springs. A `k` past
+    /// the grid's longest such path, `(u - 1) + (v - 1)`, is clamped to it (every pair).
     ///
     /// # Errors
     /// As [`connect_with_rest`](Self::connect_with_rest); [`Error::InvalidParameter`] for
-    /// `k = 0` or `u * v != positions.len()`.
+    /// `k = 0`, an empty grid, or `u * v != positions.len()`.
     pub fn surface_grid<P: Point<Scalar = S>>(
         positions: &[P],
         u: usize,
@@ -248,9 +264,10 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         k: usize,
         material: Material<S>,
     ) -> Result<Self, Error> {
-        if k == 0 || u.checked_mul(v) != Some(positions.len()) {
+        if k == 0 || u == 0 || v == 0 || u.checked_mul(v) != Some(positions.len()) {
             return Err(Error::InvalidParameter);
         }
+        let k = k.min((u - 1) + (v - 1));
         let mut s = Springs::new(material);
         for j in 0..v {
             for i in 0..u {
@@ -270,6 +287,18 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
             }
         }
         Ok(s)
+    }
+}
+
+/// Checks a rest length: positive, finite and more than the format's resolution.
+///
+/// # Errors
+/// [`Error::ZeroRestLength`] naming the spring `a`-`b`.
+pub(crate) fn check_rest<S: Scalar>(a: usize, b: usize, rest: S) -> Result<(), Error> {
+    if rest > S::EPSILON && rest.is_finite() && rest <= S::SAFE_RANGE {
+        Ok(())
+    } else {
+        Err(Error::ZeroRestLength { a, b })
     }
 }
 
@@ -351,7 +380,10 @@ mod tests {
     }
 
     fn mat() -> Material<f32> {
-        Material::new(10.0, 0.1).unwrap()
+        Material {
+            stiffness: 10.0,
+            damping: 0.1,
+        }
     }
 
     #[test]
@@ -452,8 +484,36 @@ mod tests {
             Springs::<f32, 2>::chain(&p, mat()).err(),
             Some(Error::CapacityExceeded { capacity: 2 })
         );
-        assert_eq!(Material::new(0.0f32, 1.0), Err(Error::InvalidParameter));
-        assert_eq!(Material::new(1.0f32, -1.0), Err(Error::InvalidParameter));
-        assert_eq!(Material::new(f32::NAN, 1.0), Err(Error::InvalidParameter));
+        for (stiffness, damping) in [
+            (0.0f32, 1.0),
+            (1.0, -1.0),
+            (f32::NAN, 1.0),
+            (1.0, f32::INFINITY),
+        ] {
+            let m = Material { stiffness, damping };
+            assert_eq!(m.check(), Err(Error::InvalidParameter));
+            assert_eq!(s.clone().set_material(m), Err(Error::InvalidParameter));
+        }
+    }
+
+    #[test]
+    fn a_reach_past_the_shape_is_clamped() {
+        // Every pair, whatever the reach: 4 particles in a row have 6 pairs, a 3×2 grid 15.
+        let p = row(4);
+        let all = Springs::<f32, 6>::surface_line(&p, 3, mat()).unwrap();
+        let huge = Springs::<f32, 6>::surface_line(&p, usize::MAX, mat()).unwrap();
+        assert_eq!(huge.as_slice(), all.as_slice());
+        assert_eq!(huge.spring_count(), 6);
+        let grid: std::vec::Vec<_> = (0..6)
+            .map(|k| Vec2::new((k % 3) as f32, (k / 3) as f32))
+            .collect();
+        let all = Springs::<f32, 15>::surface_grid(&grid, 3, 2, 3, mat()).unwrap();
+        let huge = Springs::<f32, 15>::surface_grid(&grid, 3, 2, usize::MAX, mat()).unwrap();
+        assert_eq!(huge.as_slice(), all.as_slice());
+        assert_eq!(huge.spring_count(), 15);
+        assert_eq!(
+            Springs::<f32, 15>::surface_grid(&grid[..0], 0, 2, 1, mat()).err(),
+            Some(Error::InvalidParameter)
+        );
     }
 }

@@ -24,9 +24,9 @@ use std::vec::Vec;
 
 use roxmltree::{Document, Node};
 
+use crate::Settings;
 use crate::shape::Grid;
 use crate::spring::{Material, Springs};
-use crate::system::Settings;
 use crate::{MassSpring, Scalar, Vec3};
 
 /// A load error: where it is and what is wrong.
@@ -495,7 +495,12 @@ pub fn build_cloth<S: Scalar, const U: usize, const V: usize, const CAP: usize>(
         Some(r) if shortest > 0.0 && shortest.is_finite() => r / shortest,
         _ => 1.0,
     };
-    let material = Material::new(S::from_f64(physics.constant), S::ZERO)
+    let material = Material {
+        stiffness: S::from_f64(physics.constant),
+        damping: S::ZERO,
+    };
+    material
+        .check()
         .map_err(|e| perr(physics.geometry_pos, format!("stiffness: {e}")))?;
     let mut springs = Springs::new(material);
     for c in &physics.connections {

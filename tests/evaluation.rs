@@ -5,10 +5,10 @@
 mod common;
 
 use common::{ExactCurve, Rng, hausdorff, sharpest_corner};
+use dunas::Settings;
 use dunas::sampler::{BernsteinTable, DeCasteljau, Sampler, Subdivide};
 use dunas::smooth::Smoothing;
 use dunas::spring::Material;
-use dunas::system::Settings;
 use dunas::{Bezier, Cloth, Error, Q16, Rope, Vec2, Vec3, lod};
 
 /// README "Choosing a sampler": the table, de Casteljau and subdivision keep f32 within
@@ -97,7 +97,10 @@ fn rest_rope<const N: usize, const CAP: usize>(smoothing: Smoothing) -> Vec<Vec2
         Vec2::new(0.0, 0.0),
         Vec2::new(70.0, 0.0),
         7.0,
-        Material::new(1500.0 * s, 0.5 * s).unwrap(),
+        Material {
+            stiffness: 1500.0 * s,
+            damping: 0.5 * s,
+        },
         settings,
     )
     .unwrap();
@@ -164,9 +167,18 @@ fn a_bezier_patch_shrinks_a_sagging_cloth() {
             ..Settings::default()
         };
         let m = [
-            Material::new(800.0, 0.5).unwrap(),
-            Material::new(300.0, 0.2).unwrap(),
-            Material::new(50.0, 0.05).unwrap(),
+            Material {
+                stiffness: 800.0,
+                damping: 0.5,
+            },
+            Material {
+                stiffness: 300.0,
+                damping: 0.2,
+            },
+            Material {
+                stiffness: 50.0,
+                damping: 0.05,
+            },
         ];
         let mut c = Cloth::rectangle(
             Vec3::new(0.0, 0.0, 0.0),

@@ -9,36 +9,41 @@ use std::f64::consts::PI;
 
 use common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period, up_crossings};
 
+use dunas::Settings;
+use dunas::integrator::{AnyIntegrator, ImplicitEuler, Integrator, Xpbd};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
-use dunas::{Error, Integrator, MassSpring, Point, Vec2};
+use dunas::{Error, MassSpring, Point, Vec2};
 
-type Chain<const N: usize, const CAP: usize> = MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>>;
+type Chain<const N: usize, const CAP: usize> =
+    MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>, AnyIntegrator>;
 
-const ALL: [Integrator; 6] = [
-    Integrator::ExplicitEuler,
-    Integrator::SymplecticEuler,
-    Integrator::Verlet,
-    Integrator::Rk4,
-    Integrator::ImplicitEuler { iterations: 16 },
-    Integrator::Xpbd { substeps: 1 },
+const ALL: [AnyIntegrator; 6] = [
+    AnyIntegrator::ExplicitEuler,
+    AnyIntegrator::SymplecticEuler,
+    AnyIntegrator::Verlet,
+    AnyIntegrator::Rk4,
+    AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 16 }),
+    AnyIntegrator::Xpbd(Xpbd { substeps: 1 }),
 ];
 
 /// A unit mass on a spring (rest 1) to a pinned particle at the origin, pulled out by `a`.
-fn oscillator(k: f64, c: f64, integrator: Integrator, a: f64) -> Chain<2, 1> {
+fn oscillator(k: f64, c: f64, integrator: AnyIntegrator, a: f64) -> Chain<2, 1> {
     oscillator_at(k, c, integrator, a, 1.0)
 }
 
 /// The same with rest length `rest`.
-fn oscillator_at(k: f64, c: f64, integrator: Integrator, a: f64, rest: f64) -> Chain<2, 1> {
+fn oscillator_at(k: f64, c: f64, integrator: AnyIntegrator, a: f64, rest: f64) -> Chain<2, 1> {
     let pos = [Vec2::new(0.0, 0.0), Vec2::new(rest + a, 0.0)];
-    let mut springs = Springs::new(Material::new(k, c).unwrap());
+    let mut springs = Springs::new(Material {
+        stiffness: k,
+        damping: c,
+    });
     springs.connect_with_rest(2, 0, 1, rest).unwrap();
     let settings = Settings {
-        integrator,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     MassSpring::new(pos, [0.0, 1.0], springs, settings).unwrap()
 }
 
@@ -84,11 +89,11 @@ fn damped_oscillator_period_and_decay() {
         let decay_err = (decay - exact_decay) / exact_decay;
         eprintln!("{integrator:?}: period error {period_err:.2e}, decay error {decay_err:+.2e}");
         match integrator {
-            Integrator::Rk4 => assert!(period_err < 1e-6 && decay_err.abs() < 1e-4),
-            Integrator::Verlet => assert!(period_err < 5e-4 && decay_err.abs() < 1e-3),
-            Integrator::SymplecticEuler => assert!(period_err < 1e-3 && decay_err.abs() < 1e-3),
+            AnyIntegrator::Rk4 => assert!(period_err < 1e-6 && decay_err.abs() < 1e-4),
+            AnyIntegrator::Verlet => assert!(period_err < 5e-4 && decay_err.abs() < 1e-3),
+            AnyIntegrator::SymplecticEuler => assert!(period_err < 1e-3 && decay_err.abs() < 1e-3),
             // Explicit Euler pumps energy in: the amplitude decays slower than it should.
-            Integrator::ExplicitEuler => assert!(period_err < 1e-3 && decay_err > 0.0),
+            AnyIntegrator::ExplicitEuler => assert!(period_err < 1e-3 && decay_err > 0.0),
             // Backward Euler and XPBD damp numerically: faster decay than the exact one.
             _ => assert!(period_err < 1e-2 && decay_err < 0.0, "{integrator:?}"),
         }
@@ -100,8 +105,8 @@ fn small_angle_pendulum_period() {
     let (g, len, theta) = (9.81f64, 1.0f64, 0.05f64);
     // Large-amplitude correction to second order: T = 2π sqrt(L/g) (1 + θ²/16).
     for (integrator, k) in [
-        (Integrator::Xpbd { substeps: 8 }, 1e7),
-        (Integrator::SymplecticEuler, 1e5),
+        (AnyIntegrator::Xpbd(Xpbd { substeps: 8 }), 1e7),
+        (AnyIntegrator::SymplecticEuler, 1e5),
     ] {
         // A stiff spring stretches by m·g/k, which lengthens the pendulum.
         let stretched = len + g / k;
@@ -110,13 +115,16 @@ fn small_angle_pendulum_period() {
             Vec2::new(0.0, 0.0),
             Vec2::new(stretched * theta.sin(), -stretched * theta.cos()),
         ];
-        let mut springs = Springs::new(Material::new(k, 0.0).unwrap());
+        let mut springs = Springs::new(Material {
+            stiffness: k,
+            damping: 0.0,
+        });
         springs.connect_with_rest(2, 0, 1, len).unwrap();
         let settings = Settings {
-            integrator,
             gravity: Vec2::new(0.0, -g),
             ..Settings::default()
-        };
+        }
+        .with_integrator(integrator);
         let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).unwrap();
         let samples = run(&mut sys, 1.0 / 120.0, 12.0, |s| s.positions()[1].x);
         let err = (period(&samples) - exact).abs() / exact;
@@ -133,7 +141,7 @@ fn catenary_error<const N: usize, const CAP: usize>(span: f64, length: f64) -> f
         span,
         length,
         1e7,
-        Integrator::ImplicitEuler { iterations: 200 },
+        AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 200 }),
         600,
         1.0 / 30.0,
     );
@@ -204,17 +212,20 @@ fn hanging_chain_normal_modes() {
             let dx = x - pos[i].x;
             pos[i + 1] = Vec2::new(x, pos[i].y - (seg * seg - dx * dx).sqrt());
         }
-        let mut springs = Springs::new(Material::new(k, 0.0).unwrap());
+        let mut springs = Springs::new(Material {
+            stiffness: k,
+            damping: 0.0,
+        });
         for i in 0..N {
             springs.connect_with_rest(N + 1, i, i + 1, l).unwrap();
         }
         let mut inv = [1.0; N + 1];
         inv[0] = 0.0;
         let settings = Settings {
-            integrator: Integrator::SymplecticEuler,
             gravity: Vec2::new(0.0, -g),
             ..Settings::default()
-        };
+        }
+        .with_integrator(AnyIntegrator::SymplecticEuler);
         let mut sys: Chain<{ N + 1 }, N> = MassSpring::new(pos, inv, springs, settings).unwrap();
         let probe = shape
             .iter()
@@ -235,17 +246,24 @@ fn hanging_chain_normal_modes() {
 }
 
 /// A free triangle of unequal masses on springs, set spinning and stretched, no gravity.
-fn free_triangle(integrator: Integrator) -> Chain<3, 3> {
+fn free_triangle(integrator: AnyIntegrator) -> Chain<3, 3> {
     let pos = [
         Vec2::new(0.0, 0.0),
         Vec2::new(1.3, 0.1),
         Vec2::new(0.4, 1.1),
     ];
-    let springs = Springs::closed_loop(&pos, Material::new(50.0, 0.0).unwrap()).unwrap();
+    let springs = Springs::closed_loop(
+        &pos,
+        Material {
+            stiffness: 50.0,
+            damping: 0.0,
+        },
+    )
+    .unwrap();
     let settings = Settings {
-        integrator,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let mut sys = MassSpring::new(pos, [1.0, 0.5, 2.0], springs, settings).unwrap();
     sys.set_position(1, Vec2::new(1.6, 0.0)).unwrap();
     sys.set_velocity(0, Vec2::new(0.3, -0.2)).unwrap();
@@ -293,11 +311,11 @@ fn energy_gains_stays_or_loses_by_integrator() {
             hi / e0
         );
         match integrator {
-            Integrator::ExplicitEuler => assert!(end > 100.0, "explicit Euler gains: {end}"),
-            Integrator::SymplecticEuler | Integrator::Verlet => {
+            AnyIntegrator::ExplicitEuler => assert!(end > 100.0, "explicit Euler gains: {end}"),
+            AnyIntegrator::SymplecticEuler | AnyIntegrator::Verlet => {
                 assert!(lo / e0 > 0.85 && hi / e0 < 1.15, "bounded: {lo} {hi}")
             }
-            Integrator::Rk4 => assert!(end < 1.0 && end > 0.99, "RK4 loses slowly: {end}"),
+            AnyIntegrator::Rk4 => assert!(end < 1.0 && end > 0.99, "RK4 loses slowly: {end}"),
             _ => assert!(
                 end < 0.01 && hi <= e0 * (1.0 + 1e-12),
                 "implicit methods lose: {end}"
@@ -309,11 +327,15 @@ fn energy_gains_stays_or_loses_by_integrator() {
 /// Steps a single unit-mass spring with ω·h = `omega_h` for 2000 steps (no substeps) and
 /// says whether it stayed bounded. The spring rests at length 100 and starts 0.1 out, so the
 /// motion stays linear (far from the pin) until it has grown 500-fold and left the ±150 bounds.
-fn stays_bounded(integrator: Integrator, omega_h: f64) -> bool {
+fn stays_bounded(integrator: AnyIntegrator, omega_h: f64) -> bool {
     let k: f64 = 100.0;
     let h = omega_h / k.sqrt();
     let mut sys = oscillator_at(k, 0.0, integrator, 0.1, 100.0);
-    sys.settings.bounds = 150.0;
+    sys.set_settings(Settings {
+        bounds: 150.0,
+        ..*sys.settings()
+    })
+    .unwrap();
     for _ in 0..2000 {
         if sys.step_once(h, ()).is_err() {
             return false;
@@ -325,9 +347,9 @@ fn stays_bounded(integrator: Integrator, omega_h: f64) -> bool {
 #[test]
 fn stability_holds_just_inside_each_limit_and_fails_just_outside() {
     for (integrator, limit) in [
-        (Integrator::SymplecticEuler, 2.0),
-        (Integrator::Verlet, 2.0),
-        (Integrator::Rk4, 2.0 * 2f64.sqrt()),
+        (AnyIntegrator::SymplecticEuler, 2.0),
+        (AnyIntegrator::Verlet, 2.0),
+        (AnyIntegrator::Rk4, 2.0 * 2f64.sqrt()),
     ] {
         let documented = integrator.stability_limit::<f64>().unwrap();
         assert!((documented - limit).abs() < 1e-6);
@@ -341,18 +363,22 @@ fn stability_holds_just_inside_each_limit_and_fails_just_outside() {
         );
     }
     // Explicit Euler grows at any step without damping.
-    assert!(!stays_bounded(Integrator::ExplicitEuler, 0.3));
-    assert!(!stays_bounded(Integrator::ExplicitEuler, 0.1));
+    assert!(!stays_bounded(AnyIntegrator::ExplicitEuler, 0.3));
+    assert!(!stays_bounded(AnyIntegrator::ExplicitEuler, 0.1));
 }
 
 #[test]
 fn implicit_euler_and_xpbd_survive_a_million_at_30_hz() {
     for integrator in [
-        Integrator::ImplicitEuler { iterations: 16 },
-        Integrator::Xpbd { substeps: 4 },
+        AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 16 }),
+        AnyIntegrator::Xpbd(Xpbd { substeps: 4 }),
     ] {
         let mut sys = oscillator(1e6, 0.0, integrator, 0.1);
-        sys.settings.gravity = Vec2::new(0.0, -9.81);
+        sys.set_settings(Settings {
+            gravity: Vec2::new(0.0, -9.81),
+            ..*sys.settings()
+        })
+        .unwrap();
         for _ in 0..300 {
             let info = sys.step(1.0 / 30.0).unwrap();
             assert_eq!(info.substeps, 1);
@@ -364,8 +390,12 @@ fn implicit_euler_and_xpbd_survive_a_million_at_30_hz() {
 
 #[test]
 fn divergence_is_reported_and_the_last_good_state_kept() {
-    let mut sys = oscillator(100.0, 0.0, Integrator::SymplecticEuler, 0.1);
-    sys.settings.bounds = 50.0;
+    let mut sys = oscillator(100.0, 0.0, AnyIntegrator::SymplecticEuler, 0.1);
+    sys.set_settings(Settings {
+        bounds: 50.0,
+        ..*sys.settings()
+    })
+    .unwrap();
     let h = 2.5 / 10.0; // ω·h = 2.5, outside the limit
     let mut last_good = sys.clone();
     let err = loop {
@@ -385,11 +415,24 @@ fn substeps_from_stiffness_keep_explicit_methods_stable() {
     // A chain of 8 with stiff springs and a heavy end; the Gershgorin bound must cover the
     // true highest frequency, and the substeps it implies must keep every method stable.
     let pos: [Vec2<f64>; 8] = core::array::from_fn(|i| Vec2::new(i as f64 * 0.5, 0.0));
-    let springs = Springs::<f64, 7>::chain(&pos, Material::new(5000.0, 0.0).unwrap()).unwrap();
+    let springs = Springs::<f64, 7>::chain(
+        &pos,
+        Material {
+            stiffness: 5000.0,
+            damping: 0.0,
+        },
+    )
+    .unwrap();
     let mut inv = [2.0; 8];
     inv[0] = 0.0;
     inv[7] = 0.25;
-    let sys: Chain<8, 7> = MassSpring::new(pos, inv, springs, Settings::default()).unwrap();
+    let sys: Chain<8, 7> = MassSpring::new(
+        pos,
+        inv,
+        springs,
+        Settings::default().with_integrator(AnyIntegrator::SymplecticEuler),
+    )
+    .unwrap();
     let (omega, _) = sys.stiffness_bound();
     // True highest frequency: eigenvalues of W·K along the chain (longitudinal).
     let mut a = [[0.0; 7]; 7];
@@ -413,14 +456,18 @@ fn substeps_from_stiffness_keep_explicit_methods_stable() {
         "bound {omega} vs true {true_max}"
     );
     for integrator in [
-        Integrator::SymplecticEuler,
-        Integrator::Verlet,
-        Integrator::Rk4,
+        AnyIntegrator::SymplecticEuler,
+        AnyIntegrator::Verlet,
+        AnyIntegrator::Rk4,
     ] {
         let mut s = sys.clone();
-        s.settings.integrator = integrator;
-        s.settings.gravity = Vec2::new(0.0, -9.81);
-        s.settings.bounds = 100.0;
+        let settings = Settings {
+            gravity: Vec2::new(0.0, -9.81),
+            bounds: 100.0,
+            ..*s.settings()
+        };
+        s.set_settings(settings.with_integrator(integrator))
+            .unwrap();
         for _ in 0..600 {
             let info = s.step(1.0 / 30.0).unwrap();
             assert!(info.substeps > 1);
@@ -436,8 +483,12 @@ fn substeps_from_stiffness_keep_explicit_methods_stable() {
 
 #[test]
 fn hitches_and_bad_time_steps_are_defined() {
-    let mut sys = oscillator(1e5, 1.0, Integrator::SymplecticEuler, 0.1);
-    sys.settings.gravity = Vec2::new(0.0, -9.81);
+    let mut sys = oscillator(1e5, 1.0, AnyIntegrator::SymplecticEuler, 0.1);
+    sys.set_settings(Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        ..*sys.settings()
+    })
+    .unwrap();
     let before = sys.clone();
     assert_eq!(sys.step(f64::NAN), Err(Error::InvalidParameter));
     assert_eq!(sys.step(-0.1), Err(Error::InvalidParameter));
@@ -457,7 +508,10 @@ fn damped_motion_never_reaches_subnormal_velocities() {
     // A free particle under linear damping decays exponentially: without the flush its
     // velocity would pass through every subnormal f32 on the way to 0.
     let pos = [Vec2::new(0.0f32, 0.0), Vec2::new(5.0, 0.0)];
-    let springs = Springs::<f32, 1>::new(Material::new(1.0, 0.0).unwrap());
+    let springs = Springs::<f32, 1>::new(Material {
+        stiffness: 1.0,
+        damping: 0.0,
+    });
     let settings = Settings {
         damping: 3.0,
         ..Settings::default()

@@ -8,6 +8,8 @@ mod rope_scene;
 
 use std::path::Path;
 
+use dunas::{Point, Vec2};
+
 fn check(name: &str, actual: &str) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/snapshots")
@@ -44,5 +46,27 @@ fn rope_demo_frames_match_their_snapshots() {
             .map(|l| format!("{}\n", l.trim_end()))
             .collect();
         check(name, &frame);
+        eprintln!("{name}: drawn lengths {:?}", scene.drawn().map(length));
+        holds_its_properties(&scene);
+    }
+}
+
+fn length(line: &[Vec2<f32>]) -> f32 {
+    line.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// What every frame must show, whatever its snapshot: each drawn rope starts at the hand,
+/// and is as long as the rope (70 units) stretched by at most 3% under the swinging weight
+/// (tension up to 3·m·g on a whole-rope stiffness of 1500 per unit: about 2%), and at least
+/// as long as the straight line from its first point to its last.
+fn holds_its_properties(scene: &rope_scene::Scene) {
+    let hand = scene.held_at();
+    for line in scene.drawn() {
+        assert_eq!(line[0], hand, "the pinned end is where the hand is");
+        let (len, chord) = (length(line), line[0].distance(line[line.len() - 1]));
+        assert!(
+            len <= 70.0 * 1.03 && len >= chord,
+            "drawn length {len}, chord {chord}"
+        );
     }
 }

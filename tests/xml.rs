@@ -51,7 +51,7 @@ fn the_shipped_sample_loads() {
     )
     .unwrap();
     assert_eq!(cloth.positions()[5].x, -2.0);
-    assert_eq!(cloth.settings.gravity.y, -4.87);
+    assert_eq!(cloth.settings().gravity.y, -4.87);
 }
 
 #[test]

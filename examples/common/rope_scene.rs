@@ -6,10 +6,7 @@ use std::time::{Duration, Instant};
 
 use dunas::ascii::{Canvas, View};
 use dunas::force::Wind;
-use dunas::sampler::BernsteinTable;
-use dunas::spring::Material;
-use dunas::system::Settings;
-use dunas::{Rope, Vec2};
+use dunas::prelude::*;
 
 /// Panel size in characters.
 pub const PANEL_W: usize = 26;
@@ -25,15 +22,17 @@ const MASS: f32 = 7.0;
 const ROPE_STIFFNESS: f32 = 1500.0;
 const WEIGHT_INV_MASS: f32 = 1.0;
 
-fn rope<const N: usize, const CAP: usize>() -> Rope<Vec2<f32>, N, CAP> {
+fn rope<const N: usize>() -> Rope<Vec2<f32>, N> {
     let settings = Settings {
         gravity: Vec2::new(0.0, -200.0),
         damping: 0.05,
         ..Settings::default()
     };
     let segments = (N - 1) as f32;
-    let material =
-        Material::new(ROPE_STIFFNESS * segments, 0.5 * segments).expect("valid material");
+    let material = Material {
+        stiffness: ROPE_STIFFNESS * segments,
+        damping: 0.5 * segments,
+    };
     // Pulled back 35° from hanging, as a catapult is before the release.
     let (sin, cos) = (0.574, 0.819);
     let end = Vec2::new(LENGTH * sin, -LENGTH * cos);
@@ -82,14 +81,14 @@ impl Cost {
 }
 
 pub struct Scene {
-    smooth8: Rope<Vec2<f32>, 8, 7>,
-    raw8: Rope<Vec2<f32>, 8, 7>,
-    raw30: Rope<Vec2<f32>, 30, 29>,
-    table: BernsteinTable<f32, 8, CURVE_POINTS>,
+    smooth8: Rope<Vec2<f32>, 8>,
+    raw8: Rope<Vec2<f32>, 8>,
+    raw30: Rope<Vec2<f32>, 30>,
     curve: [Vec2<f32>; CURVE_POINTS],
     wind: Wind<Vec2<f32>>,
     /// Cost per frame of each rope: physics step plus the points it draws.
     pub costs: [Cost; 3],
+    held_at: Vec2<f32>,
 }
 
 impl Scene {
@@ -98,10 +97,10 @@ impl Scene {
             smooth8: rope(),
             raw8: rope(),
             raw30: rope(),
-            table: BernsteinTable::new(),
             curve: [Vec2::default(); CURVE_POINTS],
             wind: gust(),
             costs: Default::default(),
+            held_at: Self::hand(0.0),
         }
     }
 
@@ -122,6 +121,7 @@ impl Scene {
     /// One fixed step of `dt` for every rope, timing each (step + drawing points).
     pub fn step(&mut self, dt: f32) {
         let hand = Self::hand(self.time() + dt);
+        self.held_at = hand;
         for pin in [
             &mut self.smooth8.set_position(0, hand),
             &mut self.raw8.set_position(0, hand),
@@ -134,8 +134,8 @@ impl Scene {
             .step_with(dt, &mut self.wind)
             .expect("the rope stays stable");
         self.smooth8
-            .sample_with(&self.table, &mut self.curve)
-            .expect("buffer holds the table");
+            .sample(Smoothing::Bezier, &mut self.curve)
+            .expect("the curve buffer holds 2 points or more");
         self.costs[0].add(t.elapsed());
         let t = Instant::now();
         self.raw8
@@ -149,24 +149,27 @@ impl Scene {
         self.costs[2].add(t.elapsed());
     }
 
+    /// Where the hand held the ropes during the last step.
+    pub fn held_at(&self) -> Vec2<f32> {
+        self.held_at
+    }
+
+    /// What each panel draws: the smoothed curve of the 8 particles, the 8 particles, the 30.
+    pub fn drawn(&self) -> [&[Vec2<f32>]; 3] {
+        [&self.curve, self.raw8.positions(), self.raw30.positions()]
+    }
+
     /// The three panels as text lines; with `costs`, a line of cost per frame under each.
     pub fn render(&self, costs: bool) -> Vec<String> {
         // 84 world units across a panel, the pin at the top middle, cells twice as tall as
         // wide like a terminal's.
         let cw = 84.0 / PANEL_W as f32;
         let view = View::new(Vec2::new(-60.0, 2.0 * cw), cw, 2.0 * cw).expect("positive cell size");
+        let [curve, raw8, raw30] = self.drawn();
         let panels = [
-            (
-                "8 particles, smoothed",
-                &self.curve[..],
-                self.smooth8.positions(),
-            ),
-            (
-                "8 particles, raw",
-                self.raw8.positions(),
-                self.raw8.positions(),
-            ),
-            ("30 particles, raw", self.raw30.positions(), &[][..]),
+            ("8 particles, smoothed", curve, self.smooth8.positions()),
+            ("8 particles, raw", raw8, raw8),
+            ("30 particles, raw", raw30, &[][..]),
         ];
         let mut lines = vec![String::new(); PANEL_H];
         for (k, (title, line, dots)) in panels.into_iter().enumerate() {

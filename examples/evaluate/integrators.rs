@@ -5,25 +5,27 @@
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use dunas::Settings;
+use dunas::integrator::{AnyIntegrator, ImplicitEuler, Integrator, Xpbd};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
-use dunas::{Integrator, MassSpring, Vec2};
+use dunas::{MassSpring, Vec2};
 
 use crate::common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period};
 use crate::report::{Run, Series, chart, csv, num};
 
-type Chain<const N: usize, const CAP: usize> = MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>>;
+type Chain<const N: usize, const CAP: usize> =
+    MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>, AnyIntegrator>;
 
-const EXPLICIT: [(&str, Integrator); 5] = [
-    ("SymplecticEuler", Integrator::SymplecticEuler),
-    ("Verlet", Integrator::Verlet),
-    ("Rk4", Integrator::Rk4),
+const EXPLICIT: [(&str, AnyIntegrator); 5] = [
+    ("SymplecticEuler", AnyIntegrator::SymplecticEuler),
+    ("Verlet", AnyIntegrator::Verlet),
+    ("Rk4", AnyIntegrator::Rk4),
     (
         "ImplicitEuler(16)",
-        Integrator::ImplicitEuler { iterations: 16 },
+        AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 16 }),
     ),
-    ("Xpbd(1)", Integrator::Xpbd { substeps: 1 }),
+    ("Xpbd(1)", AnyIntegrator::Xpbd(Xpbd { substeps: 1 })),
 ];
 
 /// Runs `steps` calls of `step` and returns (wall ns spent, samples of `probe` after each).
@@ -71,15 +73,18 @@ fn timed_period<const N: usize, const CAP: usize>(
 
 /// Damped oscillator ω0 = 10, ζ = 0.02: the largest deviation from the closed form over 2 s,
 /// relative to the amplitude, with a fixed step h (no substeps).
-fn oscillator(integrator: Integrator, h: f64) -> (f64, f64) {
+fn oscillator(integrator: AnyIntegrator, h: f64) -> (f64, f64) {
     let (k, c, a) = (100.0, 0.4, 0.1);
     let pos = [Vec2::new(0.0, 0.0), Vec2::new(10.0 + a, 0.0)];
-    let mut springs = Springs::new(Material::new(k, c).expect("valid"));
+    let mut springs = Springs::new(Material {
+        stiffness: k,
+        damping: c,
+    });
     springs.connect_with_rest(2, 0, 1, 10.0).expect("valid");
     let settings = Settings {
-        integrator,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     let steps = (2.0 / h).round() as usize;
     let (spent, xs) = timed(
@@ -104,7 +109,7 @@ fn oscillator(integrator: Integrator, h: f64) -> (f64, f64) {
 }
 
 /// Small-angle pendulum (stiff spring, automatic substeps): period error.
-fn pendulum(integrator: Integrator, dt: f64) -> (f64, f64) {
+fn pendulum(integrator: AnyIntegrator, dt: f64) -> (f64, f64) {
     let (g, len, theta, k) = (9.81f64, 1.0f64, 0.05f64, 1e5);
     let stretched = len + g / k;
     let exact = 2.0 * PI * (stretched / g).sqrt() * (1.0 + theta * theta / 16.0);
@@ -112,13 +117,16 @@ fn pendulum(integrator: Integrator, dt: f64) -> (f64, f64) {
         Vec2::new(0.0, 0.0),
         Vec2::new(stretched * theta.sin(), -stretched * theta.cos()),
     ];
-    let mut springs = Springs::new(Material::new(k, 0.0).expect("valid"));
+    let mut springs = Springs::new(Material {
+        stiffness: k,
+        damping: 0.0,
+    });
     springs.connect_with_rest(2, 0, 1, len).expect("valid");
     let settings = Settings {
-        integrator,
         gravity: Vec2::new(0.0, -g),
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let mut sys: Chain<2, 1> = MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     let (ns_per_s, measured) = timed_period(&mut sys, dt, 8.0, |s| s.positions()[1].x);
     (ns_per_s, (measured - exact).abs() / exact)
@@ -126,7 +134,7 @@ fn pendulum(integrator: Integrator, dt: f64) -> (f64, f64) {
 
 /// Fundamental mode of a chain of 8 below a pin (automatic substeps): frequency error against
 /// the discrete chain's eigenvalue.
-fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
+fn chain_mode(integrator: AnyIntegrator, dt: f64) -> (f64, f64) {
     const N: usize = 8;
     let (g, len, k) = (9.81f64, 2.0f64, 1e5);
     let l = len / N as f64;
@@ -152,7 +160,10 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
         let dx = x - pos[i].x;
         pos[i + 1] = Vec2::new(x, pos[i].y - (seg * seg - dx * dx).sqrt());
     }
-    let mut springs = Springs::new(Material::new(k, 0.0).expect("valid"));
+    let mut springs = Springs::new(Material {
+        stiffness: k,
+        damping: 0.0,
+    });
     for i in 0..N {
         springs
             .connect_with_rest(N + 1, i, i + 1, l)
@@ -161,10 +172,10 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
     let mut inv = [1.0; N + 1];
     inv[0] = 0.0;
     let settings = Settings {
-        integrator,
         gravity: Vec2::new(0.0, -g),
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let mut sys: Chain<{ N + 1 }, N> = MassSpring::new(pos, inv, springs, settings).expect("valid");
     let (ns_per_s, measured_period) =
         timed_period(&mut sys, dt, 4.0 * 2.0 * PI / exact, |s| s.positions()[N].x);
@@ -174,7 +185,7 @@ fn chain_mode(integrator: Integrator, dt: f64) -> (f64, f64) {
 
 /// A chain of 40 settling between two pins: the sag error against the catenary after 10 s
 /// at 30 Hz, for the solver budgets of the unconditionally stable methods.
-fn catenary(integrator: Integrator) -> (f64, f64) {
+fn catenary(integrator: AnyIntegrator) -> (f64, f64) {
     let start = Instant::now();
     let sys = chain_between_pins::<40, 39>(4.0, 5.0, 1e7, integrator, 300, 1.0 / 30.0);
     let spent = start.elapsed().as_nanos() as f64;
@@ -196,7 +207,7 @@ pub fn run(run: &mut Run) {
         ]
     };
     let mut sections = Vec::new();
-    type Reference = fn(Integrator, f64) -> (f64, f64);
+    type Reference = fn(AnyIntegrator, f64) -> (f64, f64);
     let references: [(&str, &str, &str, Reference); 3] = [
         (
             "oscillator",
@@ -261,9 +272,12 @@ pub fn run(run: &mut Run) {
     for (name, make) in [
         (
             "ImplicitEuler(iterations)",
-            (|b| Integrator::ImplicitEuler { iterations: b }) as fn(u8) -> Integrator,
+            (|b| AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: b }))
+                as fn(u8) -> AnyIntegrator,
         ),
-        ("Xpbd(substeps)", |b| Integrator::Xpbd { substeps: b }),
+        ("Xpbd(substeps)", |b| {
+            AnyIntegrator::Xpbd(Xpbd { substeps: b })
+        }),
     ] {
         let mut pts = Vec::new();
         for &b in budgets {

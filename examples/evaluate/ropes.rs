@@ -2,10 +2,11 @@
 //! 4×4 to 20×20, cost per frame against shape error versus a converged fine model of the same
 //! length, mass and material, at rest and while swinging.
 
+use dunas::Settings;
+use dunas::integrator::AnyIntegrator;
 use dunas::smooth::Smoothing;
 use dunas::spring::Material;
-use dunas::system::Settings;
-use dunas::{Cloth, Integrator, Point, Rope, Vec2, Vec3};
+use dunas::{Cloth, Point, Rope, Vec2, Vec3};
 
 use crate::common::{hausdorff, sharpest_corner};
 use crate::report::{Run, Series, chart, csv, median_ns, num};
@@ -29,16 +30,19 @@ enum Scene {
 
 fn rope<const N: usize, const CAP: usize>(
     scene: Scene,
-    integrator: Integrator,
-) -> Rope<Vec2<f64>, N, CAP> {
+    integrator: AnyIntegrator,
+) -> Rope<Vec2<f64>, N, CAP, AnyIntegrator> {
     let segments = (N - 1) as f64;
     let settings = Settings {
-        integrator,
         gravity: Vec2::new(0.0, GRAVITY),
         damping: if scene == Scene::Rest { 3.0 } else { 0.05 },
         ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: ROPE_K * segments,
+        damping: 0.5 * segments,
     };
-    let material = Material::new(ROPE_K * segments, 0.5 * segments).expect("valid");
     let mut r = Rope::new(
         Vec2::new(0.0, 0.0),
         Vec2::new(LENGTH, 0.0),
@@ -56,7 +60,10 @@ fn rope<const N: usize, const CAP: usize>(
 }
 
 /// The shape to compare: settled, or after the swing.
-fn settle<const N: usize, const CAP: usize>(r: &mut Rope<Vec2<f64>, N, CAP>, scene: Scene) {
+fn settle<const N: usize, const CAP: usize>(
+    r: &mut Rope<Vec2<f64>, N, CAP, AnyIntegrator>,
+    scene: Scene,
+) {
     let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
     let steps = (seconds / DT).round() as usize;
     for _ in 0..steps {
@@ -66,7 +73,7 @@ fn settle<const N: usize, const CAP: usize>(r: &mut Rope<Vec2<f64>, N, CAP>, sce
 
 /// The drawn curve of a rope.
 fn drawn<const N: usize, const CAP: usize>(
-    r: &Rope<Vec2<f64>, N, CAP>,
+    r: &Rope<Vec2<f64>, N, CAP, AnyIntegrator>,
     smoothing: Smoothing,
 ) -> Vec<Vec2<f64>> {
     if smoothing == Smoothing::Polyline {
@@ -88,7 +95,10 @@ fn frame_ns<const N: usize, const CAP: usize>(run: &Run, smoothing: Smoothing) -
         ..Settings::default()
     };
     let segments = (N - 1) as f32;
-    let material = Material::new(ROPE_K as f32 * segments, 0.5 * segments).expect("valid");
+    let material = Material {
+        stiffness: ROPE_K as f32 * segments,
+        damping: 0.5 * segments,
+    };
     let mut r: Rope<Vec2<f32>, N, CAP> = Rope::new(
         Vec2::new(0.0, 0.0),
         Vec2::new(LENGTH as f32, 0.0),
@@ -137,7 +147,7 @@ fn rope_rows<const N: usize, const CAP: usize>(
             Smoothing::CatmullRom,
             Smoothing::Polyline,
         ] {
-            let mut r = rope::<N, CAP>(scene, Integrator::SymplecticEuler);
+            let mut r = rope::<N, CAP>(scene, AnyIntegrator::SymplecticEuler);
             if scene == Scene::Rest && smoothing != Smoothing::Polyline {
                 // The library's pipeline: rest lengths calibrated so the drawn curve is 70 long.
                 r.calibrate_length(smoothing, LENGTH, DT, 120)
@@ -161,7 +171,7 @@ fn rope_rows<const N: usize, const CAP: usize>(
 
 fn reference_ropes() -> [Vec<Vec2<f64>>; 2] {
     [Scene::Rest, Scene::Swing].map(|scene| {
-        let mut r = rope::<200, 199>(scene, Integrator::SymplecticEuler);
+        let mut r = rope::<200, 199>(scene, AnyIntegrator::SymplecticEuler);
         // A finer step than the ropes under test, so the reference is converged in time too.
         let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
         for _ in 0..(seconds * 600.0).round() as usize {
@@ -346,9 +356,18 @@ fn cloth<const U: usize, const V: usize>(damping: f64) -> Cloth<Vec3<f64>, U, V>
         ..Settings::default()
     };
     let m = [
-        Material::new(800.0, 0.5).expect("valid"),
-        Material::new(300.0, 0.2).expect("valid"),
-        Material::new(50.0, 0.05).expect("valid"),
+        Material {
+            stiffness: 800.0,
+            damping: 0.5,
+        },
+        Material {
+            stiffness: 300.0,
+            damping: 0.2,
+        },
+        Material {
+            stiffness: 50.0,
+            damping: 0.05,
+        },
     ];
     let mut c = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),
@@ -424,9 +443,18 @@ fn cloth_frame_ns<const U: usize, const V: usize>(run: &Run, smoothed: bool) -> 
         ..Settings::default()
     };
     let m = [
-        Material::new(800.0f32, 0.5).expect("valid"),
-        Material::new(300.0, 0.2).expect("valid"),
-        Material::new(50.0, 0.05).expect("valid"),
+        Material {
+            stiffness: 800.0f32,
+            damping: 0.5,
+        },
+        Material {
+            stiffness: 300.0,
+            damping: 0.2,
+        },
+        Material {
+            stiffness: 50.0,
+            damping: 0.05,
+        },
     ];
     let mut c: Cloth<Vec3<f32>, U, V> = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),

@@ -1,45 +1,49 @@
 //! (d) Stability map: the largest stable step against stiffness for each integrator, with the
 //! documented bound `h = limit / ω` drawn as a line.
 
+use dunas::Settings;
+use dunas::integrator::{AnyIntegrator, ImplicitEuler, Xpbd};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
-use dunas::{Integrator, MassSpring, Vec2};
+use dunas::{MassSpring, Vec2};
 
 use crate::report::{Run, Series, chart, csv};
 
-const INTEGRATORS: [(&str, Integrator); 6] = [
-    ("ExplicitEuler", Integrator::ExplicitEuler),
-    ("SymplecticEuler", Integrator::SymplecticEuler),
-    ("Verlet", Integrator::Verlet),
-    ("Rk4", Integrator::Rk4),
+const INTEGRATORS: [(&str, AnyIntegrator); 6] = [
+    ("ExplicitEuler", AnyIntegrator::ExplicitEuler),
+    ("SymplecticEuler", AnyIntegrator::SymplecticEuler),
+    ("Verlet", AnyIntegrator::Verlet),
+    ("Rk4", AnyIntegrator::Rk4),
     (
         "ImplicitEuler(16)",
-        Integrator::ImplicitEuler { iterations: 16 },
+        AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 16 }),
     ),
-    ("Xpbd(4)", Integrator::Xpbd { substeps: 4 }),
+    ("Xpbd(4)", AnyIntegrator::Xpbd(Xpbd { substeps: 4 })),
 ];
 const MAX_H: f64 = 1.0;
 
 /// Whether a unit mass on a spring of stiffness `k` (rest 100, started 0.1 out, bounds ±150)
 /// stays bounded for `steps` fixed steps of `h`.
-fn bounded(integrator: Integrator, k: f64, h: f64, steps: usize) -> bool {
+fn bounded(integrator: AnyIntegrator, k: f64, h: f64, steps: usize) -> bool {
     let pos = [Vec2::new(0.0, 0.0), Vec2::new(100.1, 0.0)];
-    let mut springs = Springs::<f64, 1>::new(Material::new(k, 0.0).expect("valid"));
+    let mut springs = Springs::<f64, 1>::new(Material {
+        stiffness: k,
+        damping: 0.0,
+    });
     springs.connect_with_rest(2, 0, 1, 100.0).expect("valid");
     let settings = Settings {
-        integrator,
         bounds: 150.0,
         ..Settings::default()
-    };
-    let mut sys: MassSpring<Vec2<f64>, Line<2>, _> =
+    }
+    .with_integrator(integrator);
+    let mut sys: MassSpring<Vec2<f64>, Line<2>, _, AnyIntegrator> =
         MassSpring::new(pos, [0.0, 1.0], springs, settings).expect("valid");
     (0..steps).all(|_| sys.step_once(h, ()).is_ok()) && (sys.positions()[1].x - 100.0).abs() < 1.0
 }
 
 /// The largest stable step by bisection on a log scale (0 when even 1e-7 s fails, MAX_H when
 /// everything up to it holds).
-fn largest_stable(integrator: Integrator, k: f64, steps: usize) -> f64 {
+fn largest_stable(integrator: AnyIntegrator, k: f64, steps: usize) -> f64 {
     if bounded(integrator, k, MAX_H, steps) {
         return MAX_H;
     }

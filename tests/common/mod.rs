@@ -1,10 +1,11 @@
 //! Exact references shared by the tests and the measuring examples.
 #![allow(dead_code)]
 
+use dunas::Settings;
+use dunas::integrator::AnyIntegrator;
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::system::Settings;
-use dunas::{Bezier, Integrator, MassSpring, Point, Scalar, Vec2};
+use dunas::{Bezier, MassSpring, Point, Scalar, Vec2};
 
 /// Control points on a grid of `1 / DENOM`: exactly representable in f32, f64 and Q16.
 pub const DENOM: i64 = 16;
@@ -208,10 +209,10 @@ pub fn chain_between_pins<const N: usize, const CAP: usize>(
     span: f64,
     length: f64,
     k: f64,
-    integrator: Integrator,
+    integrator: AnyIntegrator,
     steps: usize,
     dt: f64,
-) -> MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>> {
+) -> MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>, AnyIntegrator> {
     let seg = length / (N - 1) as f64;
     let half_dx = span / 2.0 / ((N - 1) as f64 / 2.0);
     let dy = (seg * seg - half_dx * half_dx).sqrt();
@@ -222,7 +223,10 @@ pub fn chain_between_pins<const N: usize, const CAP: usize>(
             -((N - 1) as f64 / 2.0 - from_mid) * dy,
         )
     });
-    let mut springs = Springs::new(Material::new(k, 0.0).expect("valid material"));
+    let mut springs = Springs::new(Material {
+        stiffness: k,
+        damping: 0.0,
+    });
     for i in 0..N - 1 {
         springs
             .connect_with_rest(N, i, i + 1, seg)
@@ -232,11 +236,11 @@ pub fn chain_between_pins<const N: usize, const CAP: usize>(
     inv[0] = 0.0;
     inv[N - 1] = 0.0;
     let settings = Settings {
-        integrator,
         gravity: Vec2::new(0.0, -9.81),
         damping: 2.0,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let mut sys = MassSpring::new(pos, inv, springs, settings).expect("valid chain");
     for _ in 0..steps {
         sys.step(dt).expect("stable");

@@ -1,0 +1,168 @@
+//! Backward Euler, linearised once per substep and solved by conjugate gradient.
+
+use super::{Integrator, Model, State, sealed, tiny_length};
+use crate::force::ForceField;
+use crate::shape::Shape;
+use crate::spring::Topology;
+use crate::{Point, Scalar};
+
+/// Backward Euler linearised once per substep (Baraff–Witkin) and solved by conjugate
+/// gradient with at most `iterations` steps. Stable at any step; damps what it cannot
+/// resolve. Cost per CG iteration: one spring Jacobian product (a square root per spring).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ImplicitEuler {
+    /// Conjugate-gradient iteration budget (8 to 32 is typical).
+    pub iterations: u8,
+}
+
+impl Default for ImplicitEuler {
+    /// 16 iterations.
+    fn default() -> Self {
+        ImplicitEuler { iterations: 16 }
+    }
+}
+
+fn dot_all<P: Point>(a: &[P], b: &[P]) -> P::Scalar {
+    let mut s = P::Scalar::ZERO;
+    for (x, y) in a.iter().zip(b) {
+        s += x.dot(*y);
+    }
+    s
+}
+
+/// `out = J·p` for the springs' force Jacobian at positions `x`, scaled for backward Euler:
+/// `J·p = h·c·(n·δ)n + h²·k·[(n·δ)n + s·(δ - (n·δ)n)]` with `δ = p_b - p_a` and
+/// `s = max(0, 1 - rest/l)` (the compressive transverse term is dropped so the system stays
+/// positive definite). Subtracted at `a`, added at `b`.
+fn spring_jacobian_product<S: Scalar, P: Point<Scalar = S>>(
+    topology: &impl Topology<S>,
+    x: &[P],
+    h: S,
+    p: &[P],
+    out: &mut [P],
+    damping_too: bool,
+) {
+    let h2 = h * h;
+    topology.for_each_spring(|a, b, rest, m| {
+        let d = x[b] - x[a];
+        let l = d.length();
+        if l <= tiny_length::<S>() {
+            return;
+        }
+        let n = d * (S::ONE / l);
+        let s = (S::ONE - rest / l).max(S::ZERO);
+        let delta = p[b] - p[a];
+        let along = n * delta.dot(n);
+        let mut j = (along + (delta - along) * s) * (h2 * m.stiffness);
+        if damping_too {
+            j += along * (h * m.damping);
+        }
+        out[a] -= j;
+        out[b] += j;
+    });
+}
+
+impl sealed::Sealed for ImplicitEuler {}
+
+impl Integrator for ImplicitEuler {
+    fn stability_limit<S: Scalar>(&self) -> Option<S> {
+        None
+    }
+    fn force_evaluations(&self) -> u32 {
+        1
+    }
+    fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> bool {
+        let zero = P::default();
+        let w = model.inv_mass();
+        let x0 = Sh::flat(&state.pos);
+        let mut mass = Sh::filled(P::Scalar::ZERO);
+        for (m, &wi) in Sh::flat_mut(&mut mass).iter_mut().zip(w) {
+            *m = if wi > P::Scalar::ZERO {
+                P::Scalar::ONE / wi
+            } else {
+                P::Scalar::ZERO
+            };
+        }
+        let mass = Sh::flat(&mass);
+        let free = |i: usize| w[i] > P::Scalar::ZERO;
+        let diag = P::Scalar::ONE + h * model.damping;
+
+        // Right side b = h·M·a0 + h²·K·v0 (the spring part of K only; damping is in a0).
+        let (mut r, ok) = model.accelerations_at(state, forces, true);
+        for (i, ri) in Sh::flat_mut(&mut r).iter_mut().enumerate() {
+            *ri = *ri * (h * mass[i]);
+        }
+        // K·v0 enters with the opposite sign of the system matrix's -h²K term.
+        let mut kv = Sh::filled(zero);
+        let topology = model.topology;
+        spring_jacobian_product(
+            topology,
+            x0,
+            h,
+            Sh::flat(&state.vel),
+            Sh::flat_mut(&mut kv),
+            false,
+        );
+        for (i, (ri, kvi)) in Sh::flat_mut(&mut r)
+            .iter_mut()
+            .zip(Sh::flat(&kv))
+            .enumerate()
+        {
+            *ri = if free(i) { *ri - *kvi } else { zero };
+        }
+
+        // Conjugate gradient on (M(1 + hγ) - hC - h²K) Δv = b, pinned rows filtered out.
+        let mut dv = Sh::filled(zero);
+        let mut p = r;
+        let mut ap = Sh::filled(zero);
+        let mut rs = dot_all(Sh::flat(&r), Sh::flat(&r));
+        for _ in 0..self.iterations {
+            if rs <= P::Scalar::ZERO || !rs.is_finite() {
+                break;
+            }
+            {
+                let (pf, apf) = (Sh::flat(&p), Sh::flat_mut(&mut ap));
+                for (i, q) in apf.iter_mut().enumerate() {
+                    *q = pf[i] * (mass[i] * diag);
+                }
+                spring_jacobian_product(topology, x0, h, pf, apf, true);
+                for (i, q) in apf.iter_mut().enumerate() {
+                    if !free(i) {
+                        *q = zero;
+                    }
+                }
+            }
+            let pap = dot_all(Sh::flat(&p), Sh::flat(&ap));
+            if pap <= P::Scalar::ZERO || !pap.is_finite() {
+                break;
+            }
+            let alpha = rs / pap;
+            for ((d, r), (&pi, &api)) in Sh::flat_mut(&mut dv)
+                .iter_mut()
+                .zip(Sh::flat_mut(&mut r))
+                .zip(Sh::flat(&p).iter().zip(Sh::flat(&ap)))
+            {
+                *d += pi * alpha;
+                *r -= api * alpha;
+            }
+            let rs_new = dot_all(Sh::flat(&r), Sh::flat(&r));
+            let beta = rs_new / rs;
+            for (pi, &ri) in Sh::flat_mut(&mut p).iter_mut().zip(Sh::flat(&r)) {
+                *pi = ri + *pi * beta;
+            }
+            rs = rs_new;
+        }
+        let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
+        for ((x, v), &d) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&dv)) {
+            *v += d;
+            *x += *v * h;
+        }
+        ok
+    }
+}

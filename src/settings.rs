@@ -1,0 +1,118 @@
+//! What a system is told once: gravity, damping, scene bounds, integrator and accuracy.
+
+use crate::integrator::{Integrator, SymplecticEuler};
+use crate::{Error, Point, Scalar};
+
+/// How close to its stability limit an explicit integrator runs: the one knob that trades
+/// cost for accuracy. [`MassSpring::step`](crate::MassSpring::step) picks the substeps so
+/// that `ω·h` stays at this fraction of [`Integrator::stability_limit`] (`ω` the stiffest
+/// spring's angular frequency, `h` the substep). Substeps, and so the cost, grow as
+/// `1 / fraction`. Implicit Euler and XPBD are stable at any step and take one substep
+/// whatever the level.
+///
+/// Measured on a released, undamped 8-particle rope (`cargo run --release --example evaluate`,
+/// `docs/summary.md`, "energy against cost"): the swing of total energy around its start is
+/// about 45% for symplectic Euler and 14% for Verlet at `Fast`, and falls roughly as
+/// `(ω·h)²` with finer levels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Accuracy {
+    /// 90% of the limit (`ω·h ≈ 1.8` for symplectic Euler and Verlet): the fewest substeps
+    /// that stay stable. Springs ring with visibly wrong energy; for stiff, well-damped
+    /// ropes on a tight budget (the device demo).
+    Fast,
+    /// Half the limit (`ω·h ≈ 1`): 1.8× `Fast`'s substeps. The default: motion that keeps
+    /// its energy within a few tens of percent at a cost a game still does not notice.
+    #[default]
+    Balanced,
+    /// A tenth of the limit (`ω·h ≈ 0.2`): 9× `Fast`'s substeps; energy within a few
+    /// percent. For reference runs and slow, lightly damped scenes.
+    Fine,
+}
+
+impl Accuracy {
+    /// The fraction of the stability limit, as `(numerator, denominator)`.
+    pub const fn fraction(self) -> (u32, u32) {
+        match self {
+            Accuracy::Fast => (9, 10),
+            Accuracy::Balanced => (1, 2),
+            Accuracy::Fine => (1, 10),
+        }
+    }
+}
+
+/// Per-system settings, checked when they enter a system ([`MassSpring::new`] or
+/// [`MassSpring::set_settings`]): a system never holds settings that would make every step
+/// fail.
+///
+/// ```
+/// use dunas::{Settings, Vec2};
+/// let settings = Settings { gravity: Vec2::new(0.0, -9.8), damping: 0.2, ..Settings::default() };
+/// assert!(settings.check().is_ok());
+/// assert!(Settings { damping: -1.0, ..settings }.check().is_err());
+/// ```
+///
+/// [`MassSpring::new`]: crate::MassSpring::new
+/// [`MassSpring::set_settings`]: crate::MassSpring::set_settings
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings<P: Point, I = SymplecticEuler> {
+    /// The time integrator, chosen by type (see [`integrator`](crate::integrator)); the
+    /// default [`SymplecticEuler`] links no other integrator's code.
+    pub integrator: I,
+    /// Substeps from the stability limit: see [`Accuracy`].
+    pub accuracy: Accuracy,
+    /// Gravity, an acceleration (units per second²), applied to every free particle. Finite,
+    /// each coordinate within [`Scalar::SAFE_RANGE`].
+    pub gravity: P,
+    /// Linear damping rate (1/s, finite, `>= 0`): every free particle loses `damping · v` of
+    /// acceleration.
+    pub damping: P::Scalar,
+    /// Scene half-size (`0 < bounds <= SAFE_RANGE`): a step that puts any coordinate beyond
+    /// `±bounds` is refused as divergent. Defaults to [`Scalar::SAFE_RANGE`].
+    pub bounds: P::Scalar,
+}
+
+impl<P: Point, I> Settings<P, I> {
+    /// The same settings with another integrator: the way to pick one other than the
+    /// default, `Settings { gravity, ..Settings::default() }.with_integrator(Verlet)`.
+    pub fn with_integrator<J: Integrator>(self, integrator: J) -> Settings<P, J> {
+        Settings {
+            integrator,
+            accuracy: self.accuracy,
+            gravity: self.gravity,
+            damping: self.damping,
+            bounds: self.bounds,
+        }
+    }
+
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for gravity; [`Error::InvalidParameter`]
+    /// for a negative or non-finite damping, or bounds that are not in `(0, SAFE_RANGE]`.
+    pub fn check(&self) -> Result<(), Error> {
+        crate::error::check_points(&[self.gravity])?;
+        crate::error::check_non_negative(self.damping)?;
+        let bounds_ok = self.bounds > P::Scalar::ZERO
+            && self.bounds.is_finite()
+            && self.bounds <= P::Scalar::SAFE_RANGE;
+        if bounds_ok {
+            Ok(())
+        } else {
+            Err(Error::InvalidParameter)
+        }
+    }
+}
+
+impl<P: Point> Default for Settings<P> {
+    /// [`SymplecticEuler`], [`Accuracy::Balanced`], no gravity, no damping, bounds at the
+    /// format's safe range. Another integrator: [`with_integrator`](Settings::with_integrator).
+    fn default() -> Self {
+        Settings {
+            integrator: SymplecticEuler,
+            accuracy: Accuracy::default(),
+            gravity: P::default(),
+            damping: P::Scalar::ZERO,
+            bounds: P::Scalar::SAFE_RANGE,
+        }
+    }
+}
