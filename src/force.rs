@@ -5,7 +5,8 @@
 //! frame rather than stored, so a scene adds as many as it likes without a heap. Tuples of
 //! fields are fields too: `(wind, anchor)`.
 
-use crate::{Point, Scalar};
+use crate::error::{check_non_negative, check_points};
+use crate::{Error, Material, Point, Scalar};
 
 /// Read-only view of the particles for a force field.
 #[derive(Clone, Copy, Debug)]
@@ -23,14 +24,22 @@ pub struct Bodies<'a, P: Point> {
 pub struct Accelerations<'a, P: Point> {
     pub(crate) acc: &'a mut [P],
     pub(crate) inv_mass: &'a [P::Scalar],
+    /// Set when a `Q16` force or sum saturated: the step is then refused.
+    pub(crate) saturated: bool,
 }
 
 impl<P: Point> Accelerations<'_, P> {
     /// Adds force `f` to particle `i` (ignored for pinned particles and indices out of range).
+    /// A `Q16` force or sum that saturates makes the step fail with
+    /// [`Error::Saturated`](crate::Error::Saturated).
     #[inline]
     pub fn add_force(&mut self, i: usize, f: P) {
         if let (Some(a), Some(&w)) = (self.acc.get_mut(i), self.inv_mass.get(i)) {
-            *a += f * w;
+            let fw = f * w;
+            *a += fw;
+            if P::Scalar::FIXED_POINT {
+                self.saturated |= !(f.is_finite() && fw.is_finite() && a.is_finite());
+            }
         }
     }
 
@@ -41,6 +50,9 @@ impl<P: Point> Accelerations<'_, P> {
             && w > P::Scalar::ZERO
         {
             *acc += a;
+            if P::Scalar::FIXED_POINT {
+                self.saturated |= !(a.is_finite() && acc.is_finite());
+            }
         }
     }
 
@@ -163,19 +175,56 @@ impl<P: Point> ForceField<P> for Wind<P> {
 }
 
 /// A damped spring from one particle to an anchor point the game can move (a hand, a mast
-/// top): the thesis's anchored spring.
+/// top): the thesis's anchored spring. Checked when built and when moved, so a NaN anchor is
+/// an error, never a silent no-op.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AnchorSpring<P: Point> {
-    /// The particle (flat index); out of range does nothing.
-    pub particle: usize,
-    /// Where the other end is, this frame.
-    pub anchor: P,
-    /// Rest length.
-    pub rest: P::Scalar,
-    /// Hooke constant.
-    pub stiffness: P::Scalar,
-    /// Damping along the spring (the anchor counts as still).
-    pub damping: P::Scalar,
+    particle: usize,
+    anchor: P,
+    rest: P::Scalar,
+    material: Material<P::Scalar>,
+}
+
+impl<P: Point> AnchorSpring<P> {
+    /// A spring of `material` and rest length `rest` (`>= 0`) from `particle` (flat index;
+    /// one past the system's count does nothing) to `anchor`. The anchor counts as still for
+    /// the spring's damping.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for the anchor;
+    /// [`Error::InvalidParameter`] for a negative or non-finite rest length or a bad
+    /// material ([`Material::check`]).
+    pub fn new(
+        particle: usize,
+        anchor: P,
+        rest: P::Scalar,
+        material: Material<P::Scalar>,
+    ) -> Result<Self, Error> {
+        check_points(&[anchor])?;
+        check_non_negative(rest)?;
+        material.check()?;
+        Ok(AnchorSpring {
+            particle,
+            anchor,
+            rest,
+            material,
+        })
+    }
+
+    /// Where the anchor is.
+    pub fn anchor(&self) -> P {
+        self.anchor
+    }
+
+    /// Moves the anchor (a hand this frame).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`]; the anchor stays where it was.
+    pub fn set_anchor(&mut self, anchor: P) -> Result<(), Error> {
+        check_points(&[anchor])?;
+        self.anchor = anchor;
+        Ok(())
+    }
 }
 
 impl<P: Point> ForceField<P> for AnchorSpring<P> {
@@ -190,7 +239,7 @@ impl<P: Point> ForceField<P> for AnchorSpring<P> {
             return;
         }
         let n = d * (P::Scalar::ONE / l);
-        let f = self.stiffness * (l - self.rest) - self.damping * v.dot(n);
+        let f = self.material.stiffness * (l - self.rest) - self.material.damping * v.dot(n);
         out.add_force(self.particle, n * f);
     }
 }
@@ -228,18 +277,27 @@ mod tests {
         let mut out = Accelerations {
             acc: &mut acc,
             inv_mass: &inv,
+            saturated: false,
         };
         Wind::still(2.0).apply(0.0, &bodies, &mut out);
-        (AnchorSpring {
-            particle: 0,
-            anchor: Vec2::new(0.0, 4.0),
-            rest: 2.0,
+        let material = Material {
             stiffness: 10.0,
             damping: 0.0,
-        })
-        .apply(0.0, &bodies, &mut out);
+        };
+        let mut anchor = AnchorSpring::new(0, Vec2::new(0.0, 4.0), 2.0, material).unwrap();
+        anchor.apply(0.0, &bodies, &mut out);
         // Drag -2·2 = -4 N in x, anchor +10·2 = 20 N in y, times inverse mass 0.5; pinned stays 0.
         assert_eq!(acc[0], Vec2::new(-2.0, 10.0));
         assert_eq!(acc[1], Vec2::new(0.0, 0.0));
+        // A NaN anchor is refused, when built and when moved.
+        let nan = Vec2::new(f64::NAN, 0.0);
+        assert_eq!(
+            AnchorSpring::new(0, nan, 2.0, material),
+            Err(Error::NonFinite)
+        );
+        assert_eq!(anchor.set_anchor(nan), Err(Error::NonFinite));
+        assert_eq!(anchor.anchor(), Vec2::new(0.0, 4.0));
+        let bad = AnchorSpring::new(0, Vec2::new(0.0, 4.0), f64::NAN, material);
+        assert_eq!(bad, Err(Error::InvalidParameter));
     }
 }

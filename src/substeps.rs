@@ -60,12 +60,16 @@ pub(crate) fn substeps_per_rate<S: Scalar>(integrator: &impl Integrator, accurac
 /// zero `dt` is zero substeps.
 ///
 /// # Errors
-/// [`Error::TooStiff`] when the substep length rounds to zero in the format.
+/// [`Error::TooStiff`] when `rate · per_rate` overflows the format (saturates in `Q16`) or
+/// the substep length rounds to zero.
 pub(crate) fn plan<S: Scalar>(dt: S, rate: S, per_rate: S) -> Result<(u16, S, bool), Error> {
     if dt == S::ZERO {
         return Ok((0, S::ZERO, false));
     }
     let scale = rate * per_rate;
+    if !scale.is_finite() {
+        return Err(Error::TooStiff);
+    }
     if scale <= S::ZERO {
         return Ok((1, dt, false));
     }

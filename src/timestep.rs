@@ -22,6 +22,8 @@ use crate::{Error, Scalar};
 pub struct FixedTimestep<S> {
     step: S,
     max_frame: S,
+    /// `ceil(max_frame / step)`: the most steps one frame returns.
+    max_steps: u32,
     accumulator: S,
 }
 
@@ -37,16 +39,24 @@ impl<S: Scalar> FixedTimestep<S> {
     /// [`Error::InvalidParameter`] unless `0 < step <= max_frame`, both finite, and
     /// `max_frame / step <= MAX_STEPS_PER_FRAME`.
     pub fn new(step: S, max_frame: S) -> Result<Self, Error> {
-        let fits = || (max_frame / step).ceil_count(usize::MAX) <= MAX_STEPS_PER_FRAME as usize;
-        if step > S::ZERO && step <= max_frame && max_frame.is_finite() && fits() {
-            Ok(FixedTimestep {
-                step,
-                max_frame,
-                accumulator: S::ZERO,
-            })
-        } else {
-            Err(Error::InvalidParameter)
+        if !(step > S::ZERO && step <= max_frame && max_frame.is_finite()) {
+            return Err(Error::InvalidParameter);
         }
+        let max_steps = (max_frame / step).ceil_count(usize::MAX);
+        if max_steps > MAX_STEPS_PER_FRAME as usize {
+            return Err(Error::InvalidParameter);
+        }
+        Ok(FixedTimestep {
+            step,
+            max_frame,
+            max_steps: max_steps as u32,
+            accumulator: S::ZERO,
+        })
+    }
+
+    /// The most steps one [`advance`](Self::advance) returns: `ceil(max_frame / step)`.
+    pub fn max_steps(&self) -> u32 {
+        self.max_steps
     }
 
     /// The fixed step (seconds).
@@ -54,8 +64,9 @@ impl<S: Scalar> FixedTimestep<S> {
         self.step
     }
 
-    /// Adds a frame's duration and returns how many fixed steps to run now (at most
-    /// `ceil(max_frame / step)`).
+    /// Adds a frame's duration and returns how many fixed steps to run now: at most
+    /// [`max_steps`](Self::max_steps), even when rounding has left more time in the
+    /// accumulator (the excess is kept for later frames).
     pub fn advance(&mut self, frame: S) -> u32 {
         let frame = if frame > S::ZERO && frame.is_finite() {
             frame.min(self.max_frame)
@@ -65,7 +76,7 @@ impl<S: Scalar> FixedTimestep<S> {
         self.accumulator += frame;
         let mut steps = 0;
         // Bounded even if rounding ever stopped the accumulator from shrinking.
-        while self.accumulator >= self.step && steps <= MAX_STEPS_PER_FRAME {
+        while self.accumulator >= self.step && steps < self.max_steps {
             self.accumulator -= self.step;
             steps += 1;
         }

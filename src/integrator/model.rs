@@ -54,7 +54,7 @@ fn spring_force<P: Point>(
     let inv = P::Scalar::ONE / l;
     // f/l along d: one vector scale instead of normalising first.
     let f = m.stiffness * (l - rest) + m.damping * (vb - va).dot(d) * inv;
-    Some((d * (f * inv), !P::Scalar::FIXED_POINT || f.is_finite()))
+    Some((d * (f * inv), f.is_finite()))
 }
 
 impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
@@ -75,21 +75,34 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         acc: &mut [P],
         springs: bool,
     ) -> bool {
+        // In Q16 a saturated value is not sticky (MAX - 1 is finite again), so every
+        // product and sum is checked where it is made; floats need none of this (an
+        // overflow stays infinite and is caught as divergence).
+        let fixed = P::Scalar::FIXED_POINT;
         let w = self.inv_mass();
+        let mut ok = true;
         for i in 0..acc.len() {
             acc[i] = if w[i] > P::Scalar::ZERO {
-                self.gravity - v[i] * self.damping
+                let drag = v[i] * self.damping;
+                ok &= !fixed || drag.is_finite();
+                self.gravity - drag
             } else {
                 P::default()
             };
         }
-        let mut ok = true;
         if springs {
             self.topology.for_each_spring(|a, b, rest, m| {
                 if let Some((f, fine)) = spring_force(x[a], x[b], v[a], v[b], rest, m) {
-                    acc[a] += f * w[a];
-                    acc[b] -= f * w[b];
-                    ok &= fine;
+                    let (fa, fb) = (f * w[a], f * w[b]);
+                    acc[a] += fa;
+                    acc[b] -= fb;
+                    if fixed {
+                        ok &= fine
+                            & fa.is_finite()
+                            & fb.is_finite()
+                            & acc[a].is_finite()
+                            & acc[b].is_finite();
+                    }
                 }
             });
         }
@@ -98,13 +111,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
             vel: v,
             inv_mass: w,
         };
-        forces.apply(self.time, &bodies, &mut Accelerations { acc, inv_mass: w });
-        if P::Scalar::FIXED_POINT {
-            for a in acc.iter() {
-                ok &= a.is_finite();
-            }
-        }
-        ok
+        let mut out = Accelerations {
+            acc,
+            inv_mass: w,
+            saturated: false,
+        };
+        forces.apply(self.time, &bodies, &mut out);
+        ok && !out.saturated
     }
 
     /// Accelerations at `state`, in the layout's own array.

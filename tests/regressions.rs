@@ -1,0 +1,340 @@
+//! One test per bug found by driving the public API from outside: each fails on the code
+//! that had the bug.
+#![cfg(feature = "std")]
+
+use dunas::integrator::AnyIntegrator;
+use dunas::prelude::*;
+use dunas::shape::Line;
+use dunas::spring::Springs;
+use dunas::{FixedTimestep, MassSpring};
+
+fn material() -> Material<f64> {
+    Material {
+        stiffness: 500.0,
+        damping: 0.5,
+    }
+}
+
+fn hanging_rope(damping: f64) -> Rope<Vec2<f64>, 8> {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping,
+        ..Settings::default()
+    };
+    Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(7.0, 0.0),
+        1.0,
+        material(),
+        settings,
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_refused_calibration_leaves_the_rope_as_it_was() {
+    let mut rope = hanging_rope(1.0);
+    for _ in 0..30 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let before = (
+        rope.positions().to_vec(),
+        rope.topology().as_slice().to_vec(),
+    );
+    for target in [
+        <f64 as Scalar>::SAFE_RANGE * 2.0,
+        -1.0,
+        f64::NAN,
+        f64::INFINITY,
+    ] {
+        assert_eq!(
+            rope.calibrate_length(Smoothing::BSpline, target, 1.0 / 60.0, 10),
+            Err(Error::InvalidParameter),
+            "{target}"
+        );
+        assert_eq!(rope.positions(), &before.0[..]);
+        assert_eq!(rope.topology().as_slice(), &before.1[..]);
+    }
+    // A target the rope cannot reach without blowing up fails mid-way: still all or nothing.
+    let settings = Settings {
+        bounds: 20.0,
+        ..*rope.settings()
+    };
+    rope.set_settings(settings).unwrap();
+    let far = rope.calibrate_length(Smoothing::BSpline, 5000.0, 1.0 / 60.0, 60);
+    assert_eq!(far, Err(Error::Diverged));
+    assert_eq!(rope.positions(), &before.0[..]);
+    assert_eq!(rope.topology().as_slice(), &before.1[..]);
+    // And the rope still steps.
+    rope.step(1.0 / 60.0).unwrap();
+}
+
+#[test]
+fn damping_is_counted_once_and_never_from_a_stale_cache() {
+    let mut rope = hanging_rope(0.0);
+    let (omega, spring_gamma) = rope.stiffness_bound();
+    let settings = Settings {
+        damping: 100.0,
+        ..*rope.settings()
+    };
+    rope.set_settings(settings).unwrap();
+    let (omega_damped, gamma) = rope.stiffness_bound();
+    assert_eq!(omega_damped, omega);
+    assert!((gamma - (spring_gamma + 100.0)).abs() < 1e-9, "{gamma}");
+    // Back to no damping: the same plan as a rope that never had any.
+    rope.set_settings(Settings {
+        damping: 0.0,
+        ..settings
+    })
+    .unwrap();
+    let fresh = hanging_rope(0.0);
+    for dt in [1.0 / 240.0, 1.0 / 60.0, 0.1] {
+        assert_eq!(rope.substeps_for(dt), fresh.substeps_for(dt));
+    }
+}
+
+#[test]
+fn settings_are_checked_on_entry() {
+    let good = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 0.5,
+        ..Settings::default()
+    };
+    let bad = [
+        Settings {
+            damping: f64::NAN,
+            ..good
+        },
+        Settings {
+            damping: -1.0,
+            ..good
+        },
+        Settings {
+            gravity: Vec2::new(f64::NAN, 0.0),
+            ..good
+        },
+        Settings {
+            gravity: Vec2::new(0.0, 1e300),
+            ..good
+        },
+        Settings {
+            bounds: f64::NAN,
+            ..good
+        },
+        Settings {
+            bounds: 0.0,
+            ..good
+        },
+        Settings {
+            bounds: f64::MAX,
+            ..good
+        },
+    ];
+    let pos = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0)];
+    let springs = Springs::<f64, 1>::chain(&pos, material()).unwrap();
+    let mut system: MassSpring<_, Line<2>, _> =
+        MassSpring::new(pos, [0.0, 1.0], springs.clone(), good).unwrap();
+    for settings in bad {
+        assert!(settings.check().is_err(), "{settings:?}");
+        let built = MassSpring::<_, Line<2>, _>::new(pos, [0.0, 1.0], springs.clone(), settings);
+        assert!(built.is_err(), "{settings:?}");
+        assert!(system.set_settings(settings).is_err(), "{settings:?}");
+        assert_eq!(system.settings(), &good, "the old settings stay");
+    }
+    system.step(1.0 / 60.0).unwrap();
+}
+
+#[test]
+fn springs_too_stiff_for_the_format_are_reported_not_frozen() {
+    // Q16: the capped substep rounds to zero, a step that would simulate nothing.
+    let pos = [Vec2::<Q16>::from_f64(0.0, 0.0), Vec2::from_f64(1.0, 0.0)];
+    let stiff = Material {
+        stiffness: Q16::from_f64(30_000.0),
+        damping: Q16::ZERO,
+    };
+    let springs = Springs::<Q16, 1>::chain(&pos, stiff).unwrap();
+    // A very light particle (inverse mass 30 000): ω ≈ 30 000 rad/s, and at `Fine` the
+    // substep planner would need 150 000 substeps a second, past what Q16 can hold.
+    let light = Q16::from_f64(30_000.0);
+    let fine = Settings {
+        accuracy: Accuracy::Fine,
+        ..Settings::default()
+    };
+    let mut system: MassSpring<_, Line<2>, _> =
+        MassSpring::new(pos, [Q16::ZERO, light], springs, fine).unwrap();
+    system.set_velocity(1, Vec2::from_f64(1.0, 0.0)).unwrap();
+    let before = system.positions().to_vec();
+    assert_eq!(system.step(Q16::from_f64(1.0 / 60.0)), Err(Error::TooStiff));
+    assert_eq!(system.positions(), &before[..]);
+    assert_eq!(system.time(), Q16::ZERO);
+
+    // f32: the step still advances, in slow motion, and says so.
+    let pos = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 0.0)];
+    let stiff = Material {
+        stiffness: 1e12f32,
+        damping: 0.0,
+    };
+    let springs = Springs::<f32, 1>::chain(&pos, stiff).unwrap();
+    let mut system: MassSpring<_, Line<2>, _> =
+        MassSpring::new(pos, [0.0, 1.0], springs, Settings::default()).unwrap();
+    let info = system.step(1.0 / 60.0).unwrap();
+    assert!(info.slow_motion && info.simulated < 1.0 / 60.0, "{info:?}");
+    assert!(info.simulated > 0.0);
+    let soft = hanging_rope(0.0).clone().step(1.0 / 60.0).unwrap();
+    assert!(
+        !soft.slow_motion && soft.simulated == 1.0 / 60.0,
+        "{soft:?}"
+    );
+}
+
+/// A hand dragging a `Q16` rope toward the edge of the format: every step that `Ok`s
+/// matches an `f64` rope on the same path, and the first one whose forces would saturate is
+/// refused with [`Error::Saturated`] (or [`Error::Diverged`]), not clamped silently.
+#[test]
+fn q16_saturation_reaches_the_caller() {
+    let settings = |g: f64| Settings {
+        gravity: Vec2::new(0.0, g),
+        damping: 1.0,
+        ..Settings::default()
+    };
+    let m = Material {
+        stiffness: 400.0,
+        damping: 1.0,
+    };
+    let mq = Material {
+        stiffness: Q16::from_f64(400.0),
+        damping: Q16::ONE,
+    };
+    let mut exact: Rope<Vec2<f64>, 8> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        1.0,
+        m,
+        settings(-50.0),
+    )
+    .unwrap();
+    let mut fixed: Rope<Vec2<Q16>, 8> = Rope::new(
+        Vec2::from_f64(0.0, 0.0),
+        Vec2::from_f64(70.0, 0.0),
+        Q16::ONE,
+        mq,
+        Settings {
+            gravity: Vec2::from_f64(0.0, -50.0),
+            damping: Q16::ONE,
+            ..Settings::default()
+        },
+    )
+    .unwrap();
+    let mut refused = None;
+    for frame in 1..=2000 {
+        // The hand accelerates away along x until it reaches the format's edge.
+        let x = (frame as f64 * 0.5).powi(2).min(16_000.0);
+        exact.set_position(0, Vec2::new(x, 0.0)).unwrap();
+        fixed.set_position(0, Vec2::from_f64(x, 0.0)).unwrap();
+        exact.step(1.0 / 60.0).unwrap();
+        match fixed.step(Q16::from_f64(1.0 / 60.0)) {
+            Ok(_) => {
+                for (q, f) in fixed.positions().iter().zip(exact.positions()) {
+                    let (qx, qy) = (q.x.to_f64(), q.y.to_f64());
+                    let d = ((qx - f.x).powi(2) + (qy - f.y).powi(2)).sqrt();
+                    assert!(d < 2.0, "frame {frame} (hand at {x}): {d} from f64");
+                }
+            }
+            Err(e) => {
+                refused = Some(e);
+                break;
+            }
+        }
+    }
+    let error = refused.expect("the drag reaches the limit of Q16");
+    assert!(
+        matches!(error, Error::Saturated | Error::Diverged),
+        "{error:?}"
+    );
+}
+
+#[test]
+fn a_zero_cloth_edge_names_its_own_spring() {
+    let m = Material {
+        stiffness: 100.0f32,
+        damping: 0.1,
+    };
+    let (o, x, z) = (
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+    );
+    let settings = Settings::default();
+    let cloth = |du, dv| Cloth::<Vec3<f32>, 4, 3>::rectangle(o, du, dv, 1.0, [m; 3], settings);
+    assert_eq!(
+        cloth(Vec3::default(), z).err(),
+        Some(Error::ZeroRestLength { a: 0, b: 1 })
+    );
+    assert_eq!(
+        cloth(x, Vec3::default()).err(),
+        Some(Error::ZeroRestLength { a: 0, b: 4 })
+    );
+    // Steps of 0.5 along both edges, parallel: the second diagonal has no length.
+    assert_eq!(
+        cloth(x * 1.5, x).err(),
+        Some(Error::ZeroRestLength { a: 1, b: 4 })
+    );
+}
+
+#[test]
+fn fixed_timestep_never_returns_more_than_its_maximum() {
+    for (step, max_frame) in [(0.1f32, 0.25), (1.0 / 60.0, 0.25), (0.3, 0.9), (0.01, 0.1)] {
+        let mut clock = FixedTimestep::new(step, max_frame).unwrap();
+        let most = (max_frame / step).ceil() as u32;
+        assert_eq!(clock.max_steps(), most);
+        for k in 0..500 {
+            let frame = [max_frame, 10.0, step * 0.999, max_frame * 0.7][k % 4];
+            let n = clock.advance(frame);
+            assert!(n <= most, "{step} {max_frame}: {n} > {most}");
+        }
+    }
+}
+
+#[test]
+fn a_pinned_particle_refuses_a_velocity_and_ignores_an_impulse() {
+    let mut rope = hanging_rope(0.0);
+    assert_eq!(
+        rope.set_velocity(0, Vec2::new(1.0, 0.0)),
+        Err(Error::Pinned { index: 0 })
+    );
+    assert_eq!(rope.apply_impulse(0, Vec2::new(1.0, 0.0)), Ok(()));
+    assert_eq!(rope.velocities()[0], Vec2::new(0.0, 0.0));
+    assert_eq!(rope.set_velocity(3, Vec2::new(1.0, 0.0)), Ok(()));
+}
+
+#[test]
+fn any_integrator_runs_every_method() {
+    use dunas::integrator::{ImplicitEuler, Xpbd};
+    for integrator in [
+        AnyIntegrator::ExplicitEuler,
+        AnyIntegrator::SymplecticEuler,
+        AnyIntegrator::Verlet,
+        AnyIntegrator::Rk4,
+        AnyIntegrator::ImplicitEuler(ImplicitEuler::default()),
+        AnyIntegrator::Xpbd(Xpbd::default()),
+    ] {
+        let settings = Settings {
+            gravity: Vec2::new(0.0, -9.81),
+            damping: 1.0,
+            ..Settings::default()
+        }
+        .with_integrator(integrator);
+        let mut rope: Rope<Vec2<f64>, 8, 8, AnyIntegrator> = Rope::new(
+            Vec2::new(0.0, 0.0),
+            Vec2::new(7.0, 0.0),
+            1.0,
+            material(),
+            settings,
+        )
+        .unwrap();
+        for _ in 0..60 {
+            rope.step(1.0 / 60.0).unwrap();
+        }
+        assert!(rope.positions()[7].y < -1.0, "{integrator:?} fell");
+    }
+}
