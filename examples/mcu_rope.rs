@@ -153,24 +153,29 @@ mod device {
                 per_1000: 1,
             };
             s.overhead = s.ticks(|| {});
-            // Two calls alike but for 1000 nops in one: the difference is 1000 instructions.
-            let with = s.ticks(sled_1000);
-            let without = s.ticks(sled_0);
-            s.per_1000 = with.saturating_sub(without).max(1);
+            // Two calls alike but for 125 more turns of a 4-instruction loop in one: the
+            // difference is 500 instructions, from a dozen bytes of code.
+            let long = s.ticks(|| countdown(250));
+            let short = s.ticks(|| countdown(125));
+            s.per_1000 = (2 * long.saturating_sub(short)).max(1);
             s
         }
     }
 
-    /// 1000 `nop`s, out of line so that no literal pool has to reach across them.
+    /// `turns` turns of a loop of exactly 4 instructions (`subs`, two `nop`s, `bne`).
     #[inline(never)]
-    fn sled_1000() {
-        unsafe { asm!(".rept 1000", "nop", ".endr", options(nomem, nostack)) }
-    }
-
-    /// The same function without them.
-    #[inline(never)]
-    fn sled_0() {
-        unsafe { asm!("", options(nomem, nostack)) }
+    fn countdown(turns: u32) {
+        unsafe {
+            asm!(
+                "2:",
+                "subs r0, #1",
+                "nop",
+                "nop",
+                "bne 2b",
+                inout("r0") turns => _,
+                options(nomem, nostack)
+            )
+        }
     }
 
     impl Meter for SysTick {

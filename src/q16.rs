@@ -281,7 +281,8 @@ impl Scalar for Q16 {
 
     #[inline]
     fn is_finite(self) -> bool {
-        self != Q16::MAX && self != Q16::MIN
+        // Neither MIN nor MAX, in one subtraction and one unsigned compare (no branch).
+        (self.to_bits().wrapping_sub(i32::MIN + 1) as u32) < u32::MAX - 1
     }
 
     #[inline]

@@ -81,30 +81,37 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         let fixed = P::Scalar::FIXED_POINT;
         let w = self.inv_mass();
         let mut ok = true;
-        for i in 0..acc.len() {
-            acc[i] = if w[i] > P::Scalar::ZERO {
-                let drag = v[i] * self.damping;
-                ok &= !fixed || drag.is_finite();
-                self.gravity - drag
-            } else {
-                P::default()
-            };
-        }
+        // Springs sum forces; each particle's sum is then scaled by its inverse mass once
+        // (one multiplication per particle instead of two per spring).
+        acc.fill(P::default());
         if springs {
             self.topology.for_each_spring(|a, b, rest, m| {
                 if let Some((f, fine)) = spring_force(x[a], x[b], v[a], v[b], rest, m) {
-                    let (fa, fb) = (f * w[a], f * w[b]);
-                    acc[a] += fa;
-                    acc[b] -= fb;
+                    acc[a] += f;
+                    acc[b] -= f;
                     if fixed {
-                        ok &= fine
-                            & fa.is_finite()
-                            & fb.is_finite()
-                            & acc[a].is_finite()
-                            & acc[b].is_finite();
+                        ok &= fine & f.is_finite() & acc[a].is_finite() & acc[b].is_finite();
                     }
                 }
             });
+        }
+        for i in 0..acc.len() {
+            // Pinned particles do not accelerate: skip their multiplications where they are
+            // costly (fixed point); floats keep a branch-free loop.
+            if fixed && w[i] <= P::Scalar::ZERO {
+                acc[i] = P::default();
+                continue;
+            }
+            let force = acc[i] * w[i];
+            let drag = v[i] * self.damping;
+            acc[i] = if w[i] > P::Scalar::ZERO {
+                force + self.gravity - drag
+            } else {
+                P::default()
+            };
+            if fixed {
+                ok &= force.is_finite() & drag.is_finite() & acc[i].is_finite();
+            }
         }
         let bodies = Bodies {
             pos: x,
