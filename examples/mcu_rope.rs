@@ -62,11 +62,9 @@ pub fn simulate<S: Scalar>(
     let px = |v: i16| S::from_i16(v);
     let frac = |n: u32, d: u32| S::ratio(n, d);
     // The default integrator, symplectic Euler, is a type: no other integrator is linked.
-    // `Fast` runs it at 90% of its stability limit: the fewest substeps, for the budget.
     let settings = Settings {
         gravity: Vec2::new(px(0), px(-200)),
         damping: frac(1, 10),
-        accuracy: Accuracy::Fast,
         ..Settings::default()
     };
     let material = Material {

@@ -9,39 +9,51 @@
 //! wrote. The same code runs in `f32`, `f64` and Q16.16 fixed point ([`Q16`]), and nothing
 //! in it panics or lets a NaN out: bad input is an [`Error`].
 //!
-//! # Example
+//! # A rope in a game loop
+//!
+//! Make a rope, step it at a fixed rate, hold its end with the player's hand, and draw it:
 //!
 //! ```
-//! use dunas::{Bezier, Vec2, lod};
+//! use dunas::prelude::*;
 //!
-//! // A rope's particles, here just four points, as a cubic curve.
-//! let rope = Bezier::new([
-//!     Vec2::new(0.0f32, 0.0),
-//!     Vec2::new(30.0, -40.0),
-//!     Vec2::new(70.0, -40.0),
-//!     Vec2::new(100.0, 0.0),
-//! ])?;
+//! // 8 particles, 70 units long, 7 mass units, pinned at its first particle.
+//! let settings = Settings { gravity: Vec2::new(0.0, -200.0), damping: 0.1, ..Settings::default() };
+//! let material = Material { stiffness: 3000.0, damping: 1.0 }; // per spring
+//! let mut rope: Rope<Vec2<f32>, 8> =
+//!     Rope::new(Vec2::new(0.0, 0.0), Vec2::new(70.0, 0.0), 7.0, material, settings)?;
+//! let mut clock = FixedTimestep::new(1.0 / 60.0, 0.25)?; // a long hitch runs 0.25 s, no more
+//! let mut screen = [Vec2::default(); 64]; // the points the renderer draws
 //!
-//! // As few points as keep the drawing within half a pixel...
-//! let segments = lod::segments(&rope, 0.5)?;
-//! // ...written into a buffer owned by the game.
-//! let mut points = [Vec2::default(); 64];
-//! let n = rope.sample(&mut points[..=segments])?;
-//! assert_eq!(points[0], rope.start());
-//! assert_eq!(points[n - 1], rope.end());
+//! for (frame, frame_time) in [0.016, 0.017, 0.5, 0.016].into_iter().enumerate() {
+//!     let hand = Vec2::new(10.0 * frame as f32, 0.0); // where the player holds the rope
+//!     for _ in 0..clock.advance(frame_time) {
+//!         rope.set_position(0, hand)?;
+//!         rope.step(clock.step())?; // substeps chosen from the stiffness
+//!     }
+//!     let n = rope.sample(Smoothing::BSpline, &mut screen)?; // draw screen[..n]
+//!     assert_eq!(screen[0], hand);
+//!     assert_eq!(n, 64);
+//! }
 //! # Ok::<(), dunas::Error>(())
 //! ```
 //!
+//! Every call returns a [`Result`]: a NaN hand, a step that would blow up or a buffer too
+//! small is an [`Error`], and a refused call leaves the rope as it was.
+//!
 //! # Modules
 //!
-//! - [`scalar`]: the [`Scalar`] trait over `f32`, `f64` and [`Q16`].
-//! - [`point`]: [`Vec2`], [`Vec3`] and the [`Point`] trait.
-//! - [`curve`]: [`Bezier`] curves of any degree.
-//! - [`sampler`]: de Casteljau, Bernstein table, Horner, forward differencing and dyadic
-//!   subdivision, behind one [`Sampler`](sampler::Sampler) trait.
+//! - [`prelude`]: everything the example above uses, in one import.
+//! - [`system`]: the [`MassSpring`] system that [`Rope`] and [`Cloth`] are made of;
+//!   [`Settings`] and [`Accuracy`] configure it.
+//! - [`integrator`]: six time integrators, one type each, behind the [`Integrator`] trait.
+//! - [`spring`]: [`Material`]s and the topologies that lay springs out.
+//! - [`force`]: wind, anchor springs and the [`ForceField`](force::ForceField) trait.
 //! - [`smooth`]: a row of particles as one Bézier, a B-spline or a Catmull-Rom spline.
-//! - [`patch`]: tensor-product [`Patch`]es with normals, grids and triangle strips.
-//! - [`lod`]: Wang's formula for curves and patches.
+//! - [`curve`], [`patch`], [`sampler`], [`lod`]: Bézier curves and patches, the samplers
+//!   that draw them, and Wang's formula for how many points to draw.
+//! - [`scalar`], [`point`]: the [`Scalar`] trait over `f32`, `f64` and [`Q16`]; [`Vec2`],
+//!   [`Vec3`] and the [`Point`] trait.
+//! - [`ascii`]: a `no_std` text canvas for quick looks and device demos.
 //!
 //! # Feature flags
 //!

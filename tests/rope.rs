@@ -3,10 +3,10 @@
 #![cfg(any(feature = "std", feature = "libm"))]
 
 use dunas::Settings;
-use dunas::integrator::Rk4;
+use dunas::integrator::{Integrator, Rk4};
 use dunas::smooth::Smoothing;
 use dunas::spring::{Material, Springs};
-use dunas::{Cloth, Error, FixedTimestep, Point, Rope, Scalar, Vec2, Vec3};
+use dunas::{Accuracy, Cloth, Error, FixedTimestep, Point, Rope, Scalar, Vec2, Vec3};
 
 /// The catapult rope of the thesis: 8 particles from a pin, a heavy weight at the end, in
 /// pixel units (y up), released horizontally.
@@ -361,4 +361,56 @@ fn state_sizes_meet_the_budgets() {
     // The documented size, 20·N + 8·CAP + 44 bytes.
     assert!(rope <= 20 * 8 + 8 * 8 + 44, "{rope}");
     assert!(cloth <= 4096, "{cloth}");
+}
+
+/// A released, undamped 8-particle rope (70 units, 7 mass units, stiff springs): the
+/// largest swing of its total energy over 3 s, relative to the energy its fall releases
+/// (`m·g·L/2`), for an integrator at an accuracy.
+fn energy_swing<I: Integrator>(integrator: I, accuracy: Accuracy) -> (f64, u16) {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -200.0),
+        accuracy,
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: 1500.0 * 7.0,
+        damping: 0.0,
+    };
+    let mut rope: Rope<Vec2<f64>, 8, 7, I> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    let e0 = rope.energy();
+    let scale = 7.0 * 200.0 * 70.0 / 2.0;
+    let (mut swing, mut substeps) = (0.0f64, 0);
+    for _ in 0..180 {
+        substeps = rope.step(1.0 / 60.0).unwrap().substeps;
+        swing = swing.max((rope.energy() - e0).abs() / scale);
+    }
+    (swing, substeps)
+}
+
+/// The figures `Accuracy`'s docs quote, held as upper bounds with a margin for rounding.
+#[test]
+fn accuracy_levels_bound_the_energy_swing() {
+    use dunas::integrator::{SymplecticEuler, Verlet};
+    let levels = [
+        (Accuracy::Fast, 0.025, 0.005),
+        (Accuracy::Balanced, 0.01, 0.0012),
+        (Accuracy::Fine, 0.002, 0.0001),
+    ];
+    for (accuracy, euler_bound, verlet_bound) in levels {
+        let (euler, n_euler) = energy_swing(SymplecticEuler, accuracy);
+        let (verlet, n_verlet) = energy_swing(Verlet, accuracy);
+        eprintln!(
+            "{accuracy:?}: symplectic Euler {euler:.4} ({n_euler} substeps), Verlet {verlet:.4} ({n_verlet} substeps)"
+        );
+        assert!(euler <= euler_bound, "{accuracy:?}: {euler}");
+        assert!(verlet <= verlet_bound, "{accuracy:?}: {verlet}");
+    }
 }
