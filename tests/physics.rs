@@ -538,3 +538,55 @@ fn damped_motion_never_reaches_subnormal_velocities() {
     let stopped = stopped_at.expect("velocity flushed to an exact 0");
     assert!((615..630).contains(&stopped), "{stopped}");
 }
+
+/// How far a 1 m, 1 kg rope of 30 particles (axial stiffness 1000 N) hanging from its top
+/// stretches at rest; the continuum answer is `m·g / (2·EA)` = 0.49%.
+fn hanging_stretch<I: Integrator>(integrator: I) -> f64 {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: 1000.0 * 29.0,
+        damping: 0.5,
+    };
+    let mut rope: dunas::Rope<Vec2<f64>, 30, 30, I> = dunas::Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(0.0, -1.0),
+        1.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    for _ in 0..600 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let p = rope.positions();
+    p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() - 1.0
+}
+
+/// The stretch figures of `Xpbd`'s docs: XPBD sags deeper than the springs' own stretch
+/// until its substeps converge the chain, the excess falling about as 1/substeps².
+#[test]
+fn xpbd_stretch_converges_to_the_springs_as_substeps_grow() {
+    use dunas::integrator::SymplecticEuler;
+    let exact = 9.81 / 2000.0;
+    let springs = hanging_stretch(SymplecticEuler);
+    eprintln!(
+        "symplectic Euler: {:.3}% (continuum {:.3}%)",
+        springs * 100.0,
+        exact * 100.0
+    );
+    assert!((springs - exact).abs() < 0.01 * exact, "{springs}");
+    let mut previous_excess = f64::INFINITY;
+    for (substeps, bound) in [(4u8, 0.075), (16, 0.0095), (64, 0.0053)] {
+        let s = hanging_stretch(Xpbd { substeps });
+        eprintln!("XPBD, {substeps} substeps: {:.3}%", s * 100.0);
+        assert!(s <= bound, "{substeps}: {s}");
+        let excess = s - springs;
+        assert!(excess < previous_excess / 8.0, "{substeps}: {excess}");
+        previous_excess = excess;
+    }
+}

@@ -414,3 +414,45 @@ fn accuracy_levels_bound_the_energy_swing() {
         assert!(verlet <= verlet_bound, "{accuracy:?}: {verlet}");
     }
 }
+
+/// A rope at rest looks at rest: an `f32` rope of 30 particles (1 m, 1 kg, EA 1000 N,
+/// damping 2/s) settled for 10 s then watched for 2 s. What remains is rounding noise in
+/// its stiffest mode: speeds of a few 1e-4 m/s whose amplitude, `v/ω` with `ω` in the
+/// thousands of rad/s, is below a micrometre. The bounds are the ones `Rope`'s docs state.
+#[test]
+fn a_resting_f32_rope_stays_still() {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: 1000.0f32 * 29.0,
+        damping: 0.5,
+    };
+    let mut rope: Rope<Vec2<f32>, 30> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(0.0, -1.0),
+        1.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    for _ in 0..600 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let start = rope.positions().to_vec();
+    let (mut speed, mut drift) = (0.0f32, 0.0f32);
+    for _ in 0..120 {
+        rope.step(1.0 / 60.0).unwrap();
+        for (p, q) in rope.positions().iter().zip(&start) {
+            drift = drift.max(p.distance(*q));
+        }
+        for v in rope.velocities() {
+            speed = speed.max(v.length());
+        }
+    }
+    eprintln!("at rest: speed up to {speed:.1e} m/s, drift up to {drift:.1e} m over 2 s");
+    assert!(drift <= 2e-6, "{drift}");
+    assert!(speed <= 1e-3, "{speed}");
+}

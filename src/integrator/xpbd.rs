@@ -10,10 +10,15 @@ use crate::{Point, Scalar};
 /// `1/k`, projected once per XPBD substep ("small steps", Macklin et al. 2016, 2019). Stable
 /// at any step; loses a little energy.
 ///
-/// One projection per spring per substep is one Gauss-Seidel sweep: on a long chain it does
-/// not converge, so the chain acts softer than its springs and sags deeper under gravity
-/// than the force-based methods on the same springs. The sweep error shrinks as substeps
-/// are added (`tests/physics.rs` holds the measured stretch to its bound per substep count).
+/// One projection per spring per substep does not converge a long chain, so the chain acts
+/// softer than its springs and stretches more under gravity than the force-based methods on
+/// the same springs. The excess falls as `1/substeps²`; to match them, raise `substeps`.
+/// A 1 m, 1 kg rope of 30 particles with axial stiffness 1000 N, hanging at rest, stretches
+/// by (`tests/physics.rs`, `xpbd_stretch_converges_to_the_springs_as_substeps_grow`):
+///
+/// | substeps | 4 | 16 | 64 | force-based methods | continuum `m·g/(2·EA)` |
+/// |---|---|---|---|---|---|
+/// | stretch | 7.2% | 0.92% | 0.52% | 0.49% | 0.49% |
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Xpbd {
     /// XPBD substeps per step (4 to 20 is typical); 0 counts as 1.
