@@ -133,7 +133,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
                 p.set_coord(d, start.coord(d) + P::Scalar::from_f64(offset));
             }
         }
-        positions[N - 1] = end;
+        (positions[0], positions[N - 1]) = (start, end);
         check_points(&positions)?;
         let rest = length / P::Scalar::from_i16((N - 1).min(i16::MAX as usize) as i16);
         let mut springs = Springs::new(material);

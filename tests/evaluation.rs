@@ -38,7 +38,8 @@ fn stable_f32_samplers_stay_within_a_hundredth_of_a_pixel() {
     }
 }
 
-/// Summary (f): dunas flattens with exactly lyon_geom's (Wang's) count; kurbo needs about half.
+/// Summary (f): dunas flattens with exactly lyon_geom's (Wang's) count, at most 2.3× kurbo's
+/// (the documented bound; an adaptive flattener that needs fewer still passes).
 #[test]
 fn flattening_counts_against_lyon_and_kurbo() {
     use kurbo::{CubicBez, PathEl, Point as KPoint};
@@ -78,10 +79,8 @@ fn flattening_counts_against_lyon_and_kurbo() {
         theirs += kurbo;
     }
     let ratio = ours as f64 / theirs as f64;
-    assert!(
-        (1.5..2.3).contains(&ratio),
-        "dunas uses {ratio:.2}× kurbo's segments"
-    );
+    eprintln!("dunas uses {ratio:.2}× kurbo's segments");
+    assert!(ratio <= 2.3, "dunas uses {ratio:.2}× kurbo's segments");
 }
 
 /// A rope pinned at both ends 50 px apart, settled; smoothed ropes calibrated to a drawn
@@ -156,10 +155,11 @@ fn smoothing_eight_particles_buys_smoothness_more_than_shape() {
     );
 }
 
-/// Summary (c), cloth: a Bézier patch over an 8×8 bowl shrinks it, so it is farther from a
-/// fine cloth than the raw 8×8 grid.
+/// Summary (c), cloth: the lowest point of the Bézier patch drawn over an 8×8 bowl is within
+/// the documented 25% of a fine cloth's sag (it sits 21% high: the patch touches only the
+/// corners), and the raw 8×8 grid within 15%. A surface that fits better still passes.
 #[test]
-fn a_bezier_patch_shrinks_a_sagging_cloth() {
+fn a_bezier_patch_over_a_sagging_cloth_stays_within_its_bound() {
     fn bowl<const U: usize>() -> Cloth<Vec3<f64>, U, U> {
         let settings = Settings {
             gravity: Vec3::new(0.0, -9.81, 0.0),
@@ -216,10 +216,9 @@ fn a_bezier_patch_shrinks_a_sagging_cloth() {
         (sag_raw - sag_fine).abs() < 0.15 * sag_fine.abs(),
         "raw 8×8 sags like the fine cloth: {sag_raw} vs {sag_fine}"
     );
-    let (off_raw, off_patch) = ((sag_raw - sag_fine).abs(), (sag_patch - sag_fine).abs());
     assert!(
-        sag_patch > sag_raw && off_patch > 1.5 * off_raw,
-        "the patch sags less: {sag_patch} vs {sag_raw}"
+        (sag_patch - sag_fine).abs() <= 0.25 * sag_fine.abs(),
+        "the patch's lowest point: {sag_patch} vs {sag_fine}"
     );
 }
 

@@ -258,8 +258,10 @@ fn hub_and_loop_ropes_simulate() {
         reach(&merlin) > 6.5 && reach(&plain) > 6.5,
         "both hang near full length"
     );
-    // The hub makes it stiffer against bending: its middle sags less.
+    // The hub makes it stiffer against bending: its middle sags less, and its end stays at
+    // its hub spring's rest length (7) but for the stretch under a particle's weight.
     assert!(merlin.positions()[4].y > plain.positions()[4].y);
+    assert!((reach(&merlin) - 7.0).abs() < 0.1, "{}", reach(&merlin));
 
     let ring: [Vec2<f64>; 8] = core::array::from_fn(|i| {
         let a = i as f64 * std::f64::consts::TAU / 8.0;
@@ -276,6 +278,22 @@ fn hub_and_loop_ropes_simulate() {
     }
     let mut out = [Vec2::default(); 40];
     assert_eq!(ring_rope.sample(Smoothing::CatmullRom, &mut out), Ok(40));
+    // A free ring of 8 unit masses: the impulse moves its centre at 0.5/8 per second and
+    // spins nothing out of it; springs are internal forces.
+    let momentum = ring_rope
+        .velocities()
+        .iter()
+        .fold(Vec2::default(), |m, &v| m + v);
+    assert!(
+        (momentum - Vec2::new(0.5, 0.0)).length() < 1e-9,
+        "{momentum:?}"
+    );
+    let centre = ring_rope
+        .positions()
+        .iter()
+        .fold(Vec2::default(), |c, &p| c + p * 0.125);
+    let expected = Vec2::new(0.5 / 8.0 * ring_rope.time(), 0.0);
+    assert!((centre - expected).length() < 1e-9, "{centre:?}");
 }
 
 #[test]
@@ -313,6 +331,9 @@ fn cloth_hangs_in_the_wind_and_samples_smoothly() {
     for n in &nor {
         assert!((n.length() - 1.0).abs() < 1e-4);
     }
+    // The drawn surface meets the particles at the corners.
+    assert_eq!(pos[0], sail.positions()[0]);
+    assert_eq!(pos[255], sail.positions()[63]);
     assert_eq!(
         sail.pin_row(8),
         Err(Error::IndexOutOfRange { index: 8, len: 8 })
@@ -455,4 +476,113 @@ fn a_resting_f32_rope_stays_still() {
     eprintln!("at rest: speed up to {speed:.1e} m/s, drift up to {drift:.1e} m over 2 s");
     assert!(drift <= 2e-6, "{drift}");
     assert!(speed <= 1e-3, "{speed}");
+}
+
+/// `Rope::new` lumps the mass: inner particles `m/(N-1)`, ends half that, summing to `m`.
+#[test]
+fn rope_masses_add_up_to_the_mass_asked_for() {
+    let rope: Rope<Vec2<f64>, 8> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(7.0, 0.0),
+        3.5,
+        Material {
+            stiffness: 100.0,
+            damping: 0.0,
+        },
+        Settings::default(),
+    )
+    .unwrap();
+    let w = rope.inv_masses();
+    assert_eq!(w[0], 0.0, "the first particle is pinned");
+    let free: f64 = w[1..].iter().map(|w| 1.0 / w).sum();
+    // The pinned end's half share (3.5 / 7 / 2) is carried by the hand.
+    assert!((free + 3.5 / 14.0 - 3.5).abs() < 1e-12, "{free}");
+    assert!((1.0 / w[7] - 0.25).abs() < 1e-12 && (1.0 / w[3] - 0.5).abs() < 1e-12);
+}
+
+/// `Rope::hanging` starts on the catenary of the asked length: ends where asked, the right
+/// length, and the sag of the closed-form catenary; stepping it keeps it there to within
+/// the springs' stretch under the rope's weight.
+#[test]
+fn a_hanging_rope_starts_and_stays_on_its_catenary() {
+    let (span, length, mass, k) = (10.0f64, 12.0, 1.0, 20_000.0);
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 2.0,
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: k,
+        damping: 1.0,
+    };
+    let mut rope: Rope<Vec2<f64>, 40> = Rope::hanging(
+        Vec2::new(-span / 2.0, 0.0),
+        Vec2::new(span / 2.0, 0.0),
+        length,
+        mass,
+        material,
+        settings,
+    )
+    .unwrap();
+    let p = rope.positions();
+    assert_eq!(p[0], Vec2::new(-span / 2.0, 0.0));
+    assert_eq!(p[39], Vec2::new(span / 2.0, 0.0));
+    let polygon: f64 = p.windows(2).map(|w| w[0].distance(w[1])).sum();
+    assert!((polygon - length).abs() < 0.01 * length, "{polygon}");
+    // Closed form: y = a·cosh(x/a) - a·cosh(span/2a), with 2a·sinh(span/2a) = length.
+    let (mut lo, mut hi) = (0.1f64, 100.0f64);
+    for _ in 0..200 {
+        let a = 0.5 * (lo + hi);
+        if 2.0 * a * (span / (2.0 * a)).sinh() > length {
+            lo = a;
+        } else {
+            hi = a;
+        }
+    }
+    let a = 0.5 * (lo + hi);
+    let sag = a * (span / (2.0 * a)).cosh() - a;
+    let lowest = |r: &Rope<Vec2<f64>, 40>| r.positions().iter().map(|q| q.y).fold(0.0, f64::min);
+    assert!(
+        (lowest(&rope) + sag).abs() < 0.005 * sag,
+        "{} vs {sag}",
+        lowest(&rope)
+    );
+    for _ in 0..300 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    // Tension at most m·g·(1 + sag/span)-ish, stretch T/k per spring over 39 springs: under
+    // 1% of the sag here.
+    assert!(
+        (lowest(&rope) + sag).abs() < 0.01 * sag,
+        "{} vs {sag}",
+        lowest(&rope)
+    );
+    // Bad input: too short, vertical, no gravity.
+    let too_short = Rope::<Vec2<f64>, 8>::hanging(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(5.0, 0.0),
+        4.0,
+        mass,
+        material,
+        settings,
+    );
+    assert_eq!(too_short.err(), Some(Error::InvalidParameter));
+    let vertical = Rope::<Vec2<f64>, 8>::hanging(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(0.0, -5.0),
+        6.0,
+        mass,
+        material,
+        settings,
+    );
+    assert_eq!(vertical.err(), Some(Error::InvalidParameter));
+    let weightless = Rope::<Vec2<f64>, 8>::hanging(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(5.0, 0.0),
+        6.0,
+        mass,
+        material,
+        Settings::default(),
+    );
+    assert_eq!(weightless.err(), Some(Error::InvalidParameter));
 }
