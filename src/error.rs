@@ -48,10 +48,6 @@ pub enum Error {
     /// The simulation blew up during a step (a position or velocity became non-finite or left
     /// the scene bounds). The state before the step was kept.
     Diverged,
-    /// A fixed-point ([`Q16`](crate::Q16)) force or acceleration reached the format's limit
-    /// during a step, so the step would have clamped it silently. The state before the step
-    /// was kept.
-    Saturated,
     /// The springs are so stiff that even [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS)
     /// substeps would advance no time in this format (the scene would freeze). Nothing
     /// changed.
@@ -88,9 +84,6 @@ impl fmt::Display for Error {
             Error::Diverged => {
                 f.write_str("the simulation diverged; the state before the step was kept")
             }
-            Error::Saturated => f.write_str(
-                "a fixed-point force reached the format's limit; the state before the step was kept",
-            ),
             Error::TooStiff => f.write_str(
                 "the springs are too stiff for the substep limit in this format; nothing changed",
             ),

@@ -24,14 +24,14 @@ pub struct Bodies<'a, P: Point> {
 pub struct Accelerations<'a, P: Point> {
     pub(crate) acc: &'a mut [P],
     pub(crate) inv_mass: &'a [P::Scalar],
-    /// Set when a `Q16` force or sum saturated: the step is then refused.
+    /// Set when a `Q16` force or sum saturated (reported in the step's `StepInfo`).
     pub(crate) saturated: bool,
 }
 
 impl<P: Point> Accelerations<'_, P> {
     /// Adds force `f` to particle `i` (ignored for pinned particles and indices out of range).
-    /// A `Q16` force or sum that saturates makes the step fail with
-    /// [`Error::Saturated`](crate::Error::Saturated).
+    /// A `Q16` force or sum that saturates is reported in
+    /// [`StepInfo::saturated`](crate::system::StepInfo::saturated).
     #[inline]
     pub fn add_force(&mut self, i: usize, f: P) {
         if let (Some(a), Some(&w)) = (self.acc.get_mut(i), self.inv_mass.get(i)) {

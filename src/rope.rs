@@ -198,14 +198,20 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     /// Length of the drawn curve within `accuracy`.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive accuracy.
+    /// [`Error::InvalidParameter`] for a non-positive accuracy; [`Error::OutOfRange`] when
+    /// the length is beyond what the format holds (over 32 767 in `Q16`).
     pub fn drawn_length(
         &self,
         smoothing: Smoothing,
         accuracy: P::Scalar,
     ) -> Result<P::Scalar, Error> {
         check_positive(accuracy)?;
-        smooth::length(smoothing, self.system.position_array(), accuracy)
+        let length = smooth::length(smoothing, self.system.position_array(), accuracy)?;
+        if length.is_finite() {
+            Ok(length)
+        } else {
+            Err(Error::OutOfRange)
+        }
     }
 
     /// Scales the rest lengths so that the *drawn* curve measures `target` once the rope

@@ -21,6 +21,11 @@ pub struct StepInfo<S> {
     /// `true` when the substep cap was hit, so the step simulated less than asked (the
     /// springs are too stiff for this `dt`; see [`MAX_SUBSTEPS`]).
     pub slow_motion: bool,
+    /// `true` when a `Q16` force or acceleration reached the format's limit during the step
+    /// and was clamped there: the motion is bounded but no longer what `f64` would compute
+    /// (a hand yanked far faster than the rope can follow). Always `false` in floats, whose
+    /// overflow is caught as [`Error::Diverged`] instead.
+    pub saturated: bool,
 }
 
 /// Particles joined by springs, advanced by an [`Integrator`].
@@ -82,13 +87,26 @@ fn flush_tiny<P: Point>(v: &mut P, limit: P::Scalar) -> bool {
     ok
 }
 
+/// [`Error::OutOfRange`] unless every coordinate of `points` is within `±bounds`.
+fn check_inside<P: Point>(points: &[P], bounds: P::Scalar) -> Result<(), Error> {
+    let inside = points
+        .iter()
+        .all(|p| (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
+    if inside {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange)
+    }
+}
+
 impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, Sh, T, I> {
     /// A system at rest at `positions`, with per-particle inverse masses (0 pins).
     ///
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad position, [`Error::InvalidParameter`]
     /// for a negative or non-finite inverse mass, [`Error::IndexOutOfRange`] for a spring that
-    /// names a particle past the count, [`Error::ZeroRestLength`] for a spring whose rest
+    /// names a particle past the count, [`Error::OutOfRange`] for a position beyond
+    /// [`Settings::bounds`], [`Error::ZeroRestLength`] for a spring whose rest
     /// length is not positive, finite and within the safe range, the errors of
     /// [`Material::check`](crate::Material::check) for its material, and those of
     /// [`Settings::check`].
@@ -115,6 +133,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return Err(error);
         }
         settings.check()?;
+        check_inside(Sh::flat(&positions), settings.bounds)?;
         let mut system = MassSpring {
             state: State {
                 pos: positions,
@@ -184,9 +203,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// Replaces the settings (gravity, damping, bounds, integrator, accuracy) between steps.
     ///
     /// # Errors
-    /// As [`Settings::check`]; the old settings stay.
+    /// As [`Settings::check`], and [`Error::OutOfRange`] for bounds that a particle is
+    /// already beyond; the old settings stay.
     pub fn set_settings(&mut self, settings: Settings<P, I>) -> Result<(), Error> {
         settings.check()?;
+        check_inside(self.positions(), settings.bounds)?;
         self.per_rate = substeps_per_rate(&settings.integrator, settings.accuracy);
         self.settings = settings;
         Ok(())
@@ -196,10 +217,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// particle from the game.
     ///
     /// # Errors
-    /// [`Error::IndexOutOfRange`], or [`Error::NonFinite`] / [`Error::OutOfRange`] for `p`.
+    /// [`Error::IndexOutOfRange`], or [`Error::NonFinite`] / [`Error::OutOfRange`] for `p`
+    /// (beyond the safe range or [`Settings::bounds`]).
     pub fn set_position(&mut self, i: usize, p: P) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
         check_points(&[p])?;
+        check_inside(&[p], self.settings.bounds)?;
         Sh::flat_mut(&mut self.state.pos)[i] = p;
         Ok(())
     }
@@ -321,15 +344,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// - [`Error::InvalidParameter`] for a negative, NaN or infinite `dt`;
     /// - [`Error::TooStiff`] when even [`MAX_SUBSTEPS`] substeps would advance no time;
     /// - [`Error::Diverged`] when a position or velocity came out non-finite or beyond
-    ///   [`Settings::bounds`];
-    /// - [`Error::Saturated`] when a `Q16` force or acceleration reached the format's limit.
+    ///   [`Settings::bounds`].
+    ///
+    /// A `Q16` force that saturates is not an error (refusing it would freeze a rope whose
+    /// hand keeps pulling): it is clamped, and [`StepInfo::saturated`] says so.
     pub fn step_with<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let (n, h, slow_motion) = self.plan(dt)?;
-        self.substeps_or_undo(n, h, &mut forces)?;
+        let saturated = self.substeps_or_undo(n, h, &mut forces)?;
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -338,6 +363,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 dt
             },
             slow_motion,
+            saturated,
         })
     }
 
@@ -352,20 +378,25 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         &mut self,
         h: P::Scalar,
         mut forces: F,
-    ) -> Result<(), Error> {
-        if check_non_negative(h)? == P::Scalar::ZERO {
-            return Ok(());
-        }
-        self.substeps_or_undo(1, h, &mut forces)
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let n = u16::from(check_non_negative(h)? > P::Scalar::ZERO);
+        let saturated = self.substeps_or_undo(n, h, &mut forces)?;
+        Ok(StepInfo {
+            substeps: n,
+            simulated: h,
+            slow_motion: false,
+            saturated,
+        })
     }
 
-    /// `n` substeps of `h`, undone if the result is not sane.
+    /// `n` substeps of `h`, undone if the result is not sane; `Ok(true)` when a `Q16` force
+    /// saturated on the way.
     fn substeps_or_undo<F: ForceField<P>>(
         &mut self,
         n: u16,
         h: P::Scalar,
         forces: &mut F,
-    ) -> Result<(), Error> {
+    ) -> Result<bool, Error> {
         let saved = (self.state, self.time);
         let mut unsaturated = true;
         for _ in 0..n {
@@ -382,16 +413,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 .substep(&model, &mut self.state, h, forces);
             self.time += h;
         }
-        let sane = self.flush_and_check();
-        if sane && unsaturated {
-            Ok(())
+        if self.flush_and_check() {
+            Ok(!unsaturated)
         } else {
             (self.state, self.time) = saved;
-            Err(if sane {
-                Error::Saturated
-            } else {
-                Error::Diverged
-            })
+            Err(Error::Diverged)
         }
     }
 

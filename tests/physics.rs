@@ -391,7 +391,7 @@ fn divergence_is_reported_and_the_last_good_state_kept() {
     let mut last_good = sys.clone();
     let err = loop {
         match sys.step_once(h, ()) {
-            Ok(()) => last_good = sys.clone(),
+            Ok(_) => last_good = sys.clone(),
             Err(e) => break e,
         }
     };

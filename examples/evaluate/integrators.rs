@@ -90,7 +90,9 @@ fn oscillator(integrator: AnyIntegrator, h: f64) -> (f64, f64) {
     let (spent, xs) = timed(
         &mut sys,
         steps,
-        |s| s.step_once(h, ()).expect("stable"),
+        |s| {
+            s.step_once(h, ()).expect("stable");
+        },
         |s| s.positions()[1].x - 10.0,
     );
     let (w0, zeta) = (10.0f64, 0.02f64);

@@ -71,7 +71,7 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
     fn force_evaluations(&self) -> u32;
 
     /// Advances `state` by `h` seconds under `model`'s forces and `forces`. Returns `false`
-    /// when a `Q16` force saturated on the way (the caller undoes the step).
+    /// when a `Q16` force saturated on the way (reported in the step's `StepInfo`).
     fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
         model: &Model<'_, P, Sh, T>,

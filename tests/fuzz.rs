@@ -1,0 +1,212 @@
+//! Random sequences of the public calls on a rope, with hostile values (NaN, ±∞, 0, huge,
+//! negative, `usize::MAX`, empty and tiny buffers), in `f32`, `f64` and `Q16`. After every
+//! call: nothing panicked, every position and velocity is finite and in range, and a call
+//! that returned an error left the rope exactly as it was.
+#![cfg(all(feature = "std", feature = "fixed"))]
+
+use dunas::force::{AnchorSpring, Wind};
+use dunas::prelude::*;
+use proptest::prelude::*;
+
+/// One public call and its arguments, as `f64`s converted to the format under test.
+#[derive(Clone, Debug)]
+enum Call {
+    Step(f64),
+    StepInWind {
+        dt: f64,
+        drag: f64,
+        gust: f64,
+    },
+    StepAnchored {
+        dt: f64,
+        x: f64,
+        rest: f64,
+        k: f64,
+    },
+    SetPosition(usize, f64, f64),
+    SetVelocity(usize, f64, f64),
+    Impulse(usize, f64, f64),
+    SetInvMass(usize, f64),
+    SetSettings {
+        gravity: f64,
+        damping: f64,
+        bounds: f64,
+        accuracy: u8,
+    },
+    Calibrate {
+        target: f64,
+        dt: f64,
+        steps: u32,
+    },
+    Sample {
+        smoothing: u8,
+        len: usize,
+    },
+    DrawnLength(f64),
+}
+
+fn hostile() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        3 => -100.0..100.0f64,
+        2 => 0.0..0.1f64,
+        1 => prop::sample::select(vec![
+            f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -0.0, 1e-300, -1.0,
+            1e4, -1e4, 16_383.0, 40_000.0, 1e30, f64::MAX, f64::MIN,
+        ]),
+    ]
+}
+
+fn index() -> impl Strategy<Value = usize> {
+    prop_oneof![4 => 0..8usize, 1 => prop::sample::select(vec![8, 9, usize::MAX])]
+}
+
+fn call() -> impl Strategy<Value = Call> {
+    prop_oneof![
+        4 => hostile().prop_map(Call::Step),
+        1 => (hostile(), hostile(), hostile())
+            .prop_map(|(dt, drag, gust)| Call::StepInWind { dt, drag, gust }),
+        1 => (hostile(), hostile(), hostile(), hostile())
+            .prop_map(|(dt, x, rest, k)| Call::StepAnchored { dt, x, rest, k }),
+        2 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| Call::SetPosition(i, x, y)),
+        1 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| Call::SetVelocity(i, x, y)),
+        1 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| Call::Impulse(i, x, y)),
+        1 => (index(), hostile()).prop_map(|(i, w)| Call::SetInvMass(i, w)),
+        1 => (hostile(), hostile(), hostile(), 0..3u8).prop_map(|(gravity, damping, bounds, accuracy)| {
+            Call::SetSettings { gravity, damping, bounds, accuracy }
+        }),
+        1 => (hostile(), hostile(), 0..12u32)
+            .prop_map(|(target, dt, steps)| Call::Calibrate { target, dt, steps }),
+        1 => (0..4u8, 0..130usize).prop_map(|(smoothing, len)| Call::Sample { smoothing, len }),
+        1 => hostile().prop_map(Call::DrawnLength),
+    ]
+}
+
+fn rope<S: Scalar>() -> Rope<Vec2<S>, 8> {
+    let s = S::from_f64;
+    let settings = Settings {
+        gravity: Vec2::new(s(0.0), s(-9.81)),
+        damping: s(0.5),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: s(300.0),
+        damping: s(0.5),
+    };
+    Rope::new(
+        Vec2::new(s(0.0), s(0.0)),
+        Vec2::new(s(7.0), s(0.0)),
+        s(1.0),
+        material,
+        settings,
+    )
+    .unwrap()
+}
+
+/// Makes the call; `Err` when the rope refused it, `Ok` otherwise.
+fn apply<S: Scalar>(rope: &mut Rope<Vec2<S>, 8>, call: &Call) -> Result<(), Error> {
+    let s = S::from_f64;
+    let v = |x: f64, y: f64| Vec2::new(s(x), s(y));
+    match *call {
+        Call::Step(dt) => rope.step(s(dt)).map(drop),
+        Call::StepInWind { dt, drag, gust } => {
+            let mut wind = Wind::still(s(drag));
+            wind.gust = v(gust, 0.0);
+            wind.gust_length = s(1.0);
+            rope.step_with(s(dt), &mut wind).map(drop)
+        }
+        Call::StepAnchored { dt, x, rest, k } => {
+            let material = Material {
+                stiffness: s(k),
+                damping: s(0.1),
+            };
+            let anchor = AnchorSpring::new(7, v(x, 0.0), s(rest), material)?;
+            rope.step_with(s(dt), anchor).map(drop)
+        }
+        Call::SetPosition(i, x, y) => rope.set_position(i, v(x, y)),
+        Call::SetVelocity(i, x, y) => rope.set_velocity(i, v(x, y)),
+        Call::Impulse(i, x, y) => rope.apply_impulse(i, v(x, y)),
+        Call::SetInvMass(i, w) => rope.set_inv_mass(i, s(w)),
+        Call::SetSettings {
+            gravity,
+            damping,
+            bounds,
+            accuracy,
+        } => {
+            let settings = Settings {
+                gravity: v(0.0, gravity),
+                damping: s(damping),
+                bounds: s(bounds),
+                accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][accuracy as usize],
+                ..*rope.settings()
+            };
+            rope.set_settings(settings)
+        }
+        Call::Calibrate { target, dt, steps } => rope
+            .calibrate_length(Smoothing::BSpline, s(target), s(dt), steps)
+            .map(drop),
+        Call::Sample { smoothing, len } => {
+            let smoothing = [
+                Smoothing::Bezier,
+                Smoothing::BSpline,
+                Smoothing::CatmullRom,
+                Smoothing::Polyline,
+            ][smoothing as usize];
+            let mut out = vec![Vec2::new(S::ZERO, S::ZERO); len];
+            let n = rope.sample(smoothing, &mut out)?;
+            assert!(n <= len && n >= 2);
+            assert!(out[..n].iter().all(|p| p.in_safe_range()));
+            assert_eq!(out[0], rope.positions()[0]);
+            assert_eq!(out[n - 1], rope.positions()[7]);
+            Ok(())
+        }
+        Call::DrawnLength(accuracy) => {
+            let len = rope.drawn_length(Smoothing::CatmullRom, s(accuracy))?;
+            assert!(len.is_finite());
+            Ok(())
+        }
+    }
+}
+
+fn holds_up<S: Scalar>(calls: &[Call]) {
+    let mut rope = rope::<S>();
+    for call in calls {
+        let before = format!("{rope:?}");
+        if apply(&mut rope, call).is_err() {
+            assert_eq!(
+                format!("{rope:?}"),
+                before,
+                "{call:?} was refused but changed the rope"
+            );
+        }
+        let bounds = rope.settings().bounds;
+        for p in rope.positions() {
+            assert!(p.in_safe_range(), "{call:?} left {p:?}");
+            assert!(
+                p.x.abs() <= bounds && p.y.abs() <= bounds,
+                "{call:?} left {p:?}"
+            );
+        }
+        for v in rope.velocities() {
+            assert!(v.in_safe_range(), "{call:?} left a velocity {v:?}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f32_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<f32>(&calls);
+    }
+
+    #[test]
+    fn f64_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<f64>(&calls);
+    }
+
+    #[test]
+    fn q16_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<Q16>(&calls);
+    }
+}
