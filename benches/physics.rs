@@ -152,12 +152,12 @@ fn frames(c: &mut Criterion) {
 fn sizes(_: &mut Criterion) {
     use core::mem::size_of;
     println!(
-        "size_of Rope<Vec2<f32>, 8, 7>      = {} B",
-        size_of::<Rope<Vec2<f32>, 8, 7>>()
+        "size_of Rope<Vec2<f32>, 8>         = {} B",
+        size_of::<Rope<Vec2<f32>, 8>>()
     );
     println!(
-        "size_of Rope<Vec2<f32>, 30, 29>    = {} B",
-        size_of::<Rope<Vec2<f32>, 30, 29>>()
+        "size_of Rope<Vec2<f32>, 30>        = {} B",
+        size_of::<Rope<Vec2<f32>, 30>>()
     );
     println!(
         "size_of Cloth<Vec3<f32>, 8, 8>     = {} B",

@@ -1,6 +1,6 @@
 //! The main demo: the same catapult rope three ways, side by side in the terminal.
 //!
-//! Left, 8 particles drawn through a Bézier curve (the Dunas way); middle, the same 8 particles
+//! Left, 8 particles drawn through a B-spline curve (the Dunas way); middle, the same 8 particles
 //! drawn raw; right, 30 particles drawn raw, what a plain mass-spring rope needs to look smooth.
 //! Each rope hangs from a pin with a heavy weight on its end, is released sideways, and a gust
 //! of wind passes at 3 s. Under each panel: that rope's cost per frame (physics step, plus the

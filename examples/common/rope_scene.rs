@@ -134,7 +134,7 @@ impl Scene {
             .step_with(dt, &mut self.wind)
             .expect("the rope stays stable");
         self.smooth8
-            .sample(Smoothing::Bezier, &mut self.curve)
+            .sample(Smoothing::BSpline, &mut self.curve)
             .expect("the curve buffer holds 2 points or more");
         self.costs[0].add(t.elapsed());
         let t = Instant::now();
