@@ -39,9 +39,7 @@ impl<P: Point> View<P> {
     /// [`Error::InvalidParameter`] for a non-positive or non-finite cell size.
     pub fn new(top_left: P, cell_width: P::Scalar, cell_height: P::Scalar) -> Result<Self, Error> {
         for c in [cell_width, cell_height] {
-            if !(c > P::Scalar::ZERO && c.is_finite()) {
-                return Err(Error::InvalidParameter);
-            }
+            crate::error::check_positive(c)?;
         }
         Ok(View {
             top_left,

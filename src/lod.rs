@@ -21,6 +21,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::error::check_positive;
 use crate::{Bezier, Error, Patch, Point, Scalar};
 
 /// The most segments [`segments`] returns (`2^16`); a request that needs more is clamped.
@@ -57,14 +58,6 @@ fn wang_count<S: Scalar>(degree: usize, half_m: S, tol: S) -> usize {
     x.ceil_count(MAX_SEGMENTS).max(1)
 }
 
-fn check_tolerance<S: Scalar>(tol: S) -> Result<(), Error> {
-    if tol > S::ZERO && tol.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::InvalidParameter)
-    }
-}
-
 /// The number of uniform segments (samples minus one) that keeps the polyline of `curve`
 /// within `tolerance` of the curve everywhere, by Wang's formula. Always at least 1, at most
 /// [`MAX_SEGMENTS`].
@@ -75,7 +68,7 @@ pub fn segments<P: Point, const N: usize>(
     curve: &Bezier<P, N>,
     tolerance: P::Scalar,
 ) -> Result<usize, Error> {
-    check_tolerance(tolerance)?;
+    check_positive(tolerance)?;
     let m = half_second_difference(curve.points().iter().copied());
     Ok(wang_count(N - 1, m, tolerance))
 }
@@ -94,7 +87,7 @@ pub fn patch_segments<P: Point, const U: usize, const V: usize>(
     patch: &Patch<P, U, V>,
     tolerance: P::Scalar,
 ) -> Result<(usize, usize), Error> {
-    check_tolerance(tolerance)?;
+    check_positive(tolerance)?;
     let half_tol = Scalar::midpoint(tolerance, P::Scalar::ZERO);
     let rows = patch.points();
     let mut mu = P::Scalar::ZERO;
