@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{ExactCurve, Rng, hausdorff, sharpest_corner};
+use common::{ExactCurve, Rng, cloth_materials, hausdorff, sharpest_corner};
 use dunas::Settings;
 use dunas::sampler::{BernsteinTable, DeCasteljau, Sampler, Subdivide};
 use dunas::smooth::Smoothing;
@@ -166,20 +166,7 @@ fn a_bezier_patch_over_a_sagging_cloth_stays_within_its_bound() {
             damping: 2.0,
             ..Settings::default()
         };
-        let m = [
-            Material {
-                stiffness: 800.0,
-                damping: 0.5,
-            },
-            Material {
-                stiffness: 300.0,
-                damping: 0.2,
-            },
-            Material {
-                stiffness: 50.0,
-                damping: 0.05,
-            },
-        ];
+        let m = cloth_materials();
         let mut c = Cloth::rectangle(
             Vec3::new(0.0, 0.0, 0.0),
             Vec3::new(10.0, 0.0, 0.0),

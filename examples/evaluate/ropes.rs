@@ -8,7 +8,7 @@ use dunas::smooth::Smoothing;
 use dunas::spring::Material;
 use dunas::{Cloth, Point, Rope, Vec2, Vec3};
 
-use crate::common::{hausdorff, sharpest_corner};
+use crate::common::{cloth_materials, hausdorff, sharpest_corner};
 use crate::report::{Run, Series, chart, csv, median_ns, num};
 
 const LENGTH: f64 = 70.0;
@@ -355,20 +355,7 @@ fn cloth<const U: usize, const V: usize>(damping: f64) -> Cloth<Vec3<f64>, U, V>
         damping,
         ..Settings::default()
     };
-    let m = [
-        Material {
-            stiffness: 800.0,
-            damping: 0.5,
-        },
-        Material {
-            stiffness: 300.0,
-            damping: 0.2,
-        },
-        Material {
-            stiffness: 50.0,
-            damping: 0.05,
-        },
-    ];
+    let m = cloth_materials();
     let mut c = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(CLOTH_SIZE, 0.0, 0.0),
@@ -442,20 +429,7 @@ fn cloth_frame_ns<const U: usize, const V: usize>(run: &Run, smoothed: bool) -> 
         damping: 0.1,
         ..Settings::default()
     };
-    let m = [
-        Material {
-            stiffness: 800.0f32,
-            damping: 0.5,
-        },
-        Material {
-            stiffness: 300.0,
-            damping: 0.2,
-        },
-        Material {
-            stiffness: 50.0,
-            damping: 0.05,
-        },
-    ];
+    let m = cloth_materials();
     let mut c: Cloth<Vec3<f32>, U, V> = Cloth::rectangle(
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(10.0, 0.0, 0.0),

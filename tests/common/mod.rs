@@ -259,3 +259,11 @@ pub fn catenary_sag_error(points: &[Vec2<f64>], span: f64, length: f64) -> f64 {
         .map(|p| (p.y - (a * (p.x / a).cosh() + c)).abs() / sag)
         .fold(0.0, f64::max)
 }
+
+/// The sail materials of the evaluation and its tests: structural, shear and bending springs.
+pub fn cloth_materials<S: dunas::Scalar>() -> [Material<S>; 3] {
+    [(800.0, 0.5), (300.0, 0.2), (50.0, 0.05)].map(|(k, c)| Material {
+        stiffness: S::from_f64(k),
+        damping: S::from_f64(c),
+    })
+}
