@@ -127,7 +127,11 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         rest: S,
     ) -> Result<(), Error> {
         for index in [a, b] {
-            check_index(index, len.min(u16::MAX as usize + 1))?;
+            // Indices are stored as u16: one past that is out of range whatever `len` says.
+            if index > u16::MAX as usize {
+                return Err(Error::IndexOutOfRange { index, len });
+            }
+            check_index(index, len)?;
         }
         let (lo, hi) = if a < b {
             (a as u16, b as u16)

@@ -102,27 +102,39 @@ pub enum AnyIntegrator {
 
 impl sealed::Sealed for AnyIntegrator {}
 
+/// Runs `$body` with `$m` bound to the method `$any` names.
+macro_rules! with_method {
+    ($any:expr, $m:ident => $body:expr) => {
+        match $any {
+            AnyIntegrator::ExplicitEuler => {
+                let $m = ExplicitEuler;
+                $body
+            }
+            AnyIntegrator::SymplecticEuler => {
+                let $m = SymplecticEuler;
+                $body
+            }
+            AnyIntegrator::Verlet => {
+                let $m = Verlet;
+                $body
+            }
+            AnyIntegrator::Rk4 => {
+                let $m = Rk4;
+                $body
+            }
+            AnyIntegrator::ImplicitEuler($m) => $body,
+            AnyIntegrator::Xpbd($m) => $body,
+        }
+    };
+}
+
 impl Integrator for AnyIntegrator {
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
-        match self {
-            AnyIntegrator::ExplicitEuler => ExplicitEuler.stability_limit(),
-            AnyIntegrator::SymplecticEuler => SymplecticEuler.stability_limit(),
-            AnyIntegrator::Verlet => Verlet.stability_limit(),
-            AnyIntegrator::Rk4 => Rk4.stability_limit(),
-            AnyIntegrator::ImplicitEuler(m) => m.stability_limit(),
-            AnyIntegrator::Xpbd(m) => m.stability_limit(),
-        }
+        with_method!(*self, m => m.stability_limit())
     }
 
     fn force_evaluations(&self) -> u32 {
-        match self {
-            AnyIntegrator::ExplicitEuler => ExplicitEuler.force_evaluations(),
-            AnyIntegrator::SymplecticEuler => SymplecticEuler.force_evaluations(),
-            AnyIntegrator::Verlet => Verlet.force_evaluations(),
-            AnyIntegrator::Rk4 => Rk4.force_evaluations(),
-            AnyIntegrator::ImplicitEuler(m) => m.force_evaluations(),
-            AnyIntegrator::Xpbd(m) => m.force_evaluations(),
-        }
+        with_method!(*self, m => m.force_evaluations())
     }
 
     fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
@@ -132,13 +144,6 @@ impl Integrator for AnyIntegrator {
         h: P::Scalar,
         forces: &mut F,
     ) -> bool {
-        match self {
-            AnyIntegrator::ExplicitEuler => ExplicitEuler.substep(model, state, h, forces),
-            AnyIntegrator::SymplecticEuler => SymplecticEuler.substep(model, state, h, forces),
-            AnyIntegrator::Verlet => Verlet.substep(model, state, h, forces),
-            AnyIntegrator::Rk4 => Rk4.substep(model, state, h, forces),
-            AnyIntegrator::ImplicitEuler(m) => m.substep(model, state, h, forces),
-            AnyIntegrator::Xpbd(m) => m.substep(model, state, h, forces),
-        }
+        with_method!(*self, m => m.substep(model, state, h, forces))
     }
 }
