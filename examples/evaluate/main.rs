@@ -2,7 +2,8 @@
 //! summary with the targets, into `docs/` (or `--out DIR`).
 //!
 //! Run: `cargo run --release --example evaluate` (a few minutes), or `-- --quick` for a smoke
-//! run under a minute that writes into `target/evaluate-quick/`.
+//! run under a minute that writes into `target/evaluate-quick/`. `--only ropes` runs the sections
+//! whose name starts with `ropes` (to iterate on one; the summary then holds only those).
 
 #[path = "../../tests/common/mod.rs"]
 mod common;
@@ -52,13 +53,17 @@ fn commit() -> String {
 fn main() {
     let mut quick = false;
     let mut out = None;
+    let mut only = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--quick" => quick = true,
             "--out" => out = args.next().map(PathBuf::from),
+            "--only" => only = args.next(),
             other => {
-                eprintln!("evaluate: unknown argument {other} (use --quick, --out DIR)");
+                eprintln!(
+                    "evaluate: unknown argument {other} (use --quick, --out DIR, --only SECTION)"
+                );
                 std::process::exit(2);
             }
         }
@@ -91,6 +96,9 @@ fn main() {
         ("level of detail", flatten::run),
     ];
     for (name, section) in sections {
+        if only.as_deref().is_some_and(|o| !name.starts_with(o)) {
+            continue;
+        }
         let t = Instant::now();
         section(&mut run);
         println!("{name}: {:.1} s", t.elapsed().as_secs_f64());
