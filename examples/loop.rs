@@ -6,7 +6,7 @@
 use dunas::Settings;
 use dunas::ascii::{Canvas, View};
 use dunas::force::Wind;
-use dunas::smooth::{self, Smoothing};
+use dunas::smooth::{Smoothed, Smoothing};
 use dunas::spring::{Material, Springs};
 use dunas::{Rope, Vec2};
 
@@ -51,8 +51,9 @@ fn main() {
             hoop.step_with(1.0 / 60.0, &mut wind)
                 .expect("the hoop stays stable");
         }
-        let n = smooth::sample_closed(Smoothing::BSpline, hoop.position_array(), &mut curve)
-            .expect("buffer holds 2+");
+        let n = Smoothed::closed(Smoothing::BSpline, hoop.position_array())
+            .and_then(|c| c.sample(&mut curve))
+            .expect("the hoop stays in range and the buffer holds a point a span");
         let mut cells = [b' '; W * H];
         let mut canvas = Canvas::new(&mut cells, W, H).expect("sized buffer");
         let view = View::new(Vec2::new(-20.0, 2.0), 1.0, 2.0).expect("positive cells");

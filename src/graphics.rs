@@ -1,18 +1,22 @@
 //! Drawing into any [embedded-graphics](embedded_graphics) `DrawTarget` (feature
-//! `embedded-graphics`): sampled curves as polylines, patch samples as wireframes. Positions
-//! map to pixels through the same [`View`] as the ASCII canvas.
+//! `embedded-graphics`): a sampled curve is a [`Curve`] primitive and a sampled patch a
+//! [`Wireframe`], styled and drawn the way that crate draws its own shapes. Positions map to
+//! pixels through the same [`View`] as the ASCII canvas.
 //!
 //! ```
-//! use dunas::{Bezier, Vec2, ascii::View, graphics};
-//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
+//! use dunas::{Bezier, Vec2, ascii::View, graphics::Curve};
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor, prelude::*};
+//! use embedded_graphics::primitives::PrimitiveStyle;
 //!
 //! let c = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(2.0, -6.0), Vec2::new(4.0, 0.0)])?;
 //! let mut pts = [Vec2::default(); 5];
 //! c.sample(&mut pts)?;
-//! let mut display = MockDisplay::new();
-//! display.set_allow_overdraw(true);
 //! let view = View::new(Vec2::new(0.0f32, 0.0), 1.0, 1.0)?;
-//! graphics::draw_polyline(&mut display, &view, &pts, BinaryColor::On).unwrap();
+//! let mut display = MockDisplay::new(); // refuses a pixel drawn twice
+//! Curve::new(&pts, view)
+//!     .into_styled(PrimitiveStyle::with_stroke(BinaryColor::On, 1))
+//!     .draw(&mut display)
+//!     .unwrap();
 //! // Samples at (0,0), (1,2), (2,3), (3,2), (4,0) in pixels (y grows downwards), joined.
 //! display.assert_pattern(&[
 //!     "#   #",
@@ -23,11 +27,13 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
-use embedded_graphics::Drawable;
 use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::geometry::Point as Pixel;
-use embedded_graphics::prelude::PixelColor;
-use embedded_graphics::primitives::{Line, Primitive, PrimitiveStyle};
+use embedded_graphics::geometry::{Dimensions, Point as Pixel};
+use embedded_graphics::pixelcolor::PixelColor;
+use embedded_graphics::primitives::{
+    Line, PointsIter, Primitive, PrimitiveStyle, Rectangle, StyledDimensions, StyledDrawable,
+};
+use embedded_graphics::{Drawable, Pixel as ColoredPixel};
 
 use crate::Point;
 use crate::ascii::View;
@@ -37,67 +43,201 @@ fn pixel<P: Point>(view: &View<P>, p: P) -> Pixel {
     Pixel::new(x, y)
 }
 
-/// Joins consecutive `points` with 1-pixel lines of `color`.
-///
-/// # Errors
-/// The target's own drawing error, at the first segment that fails.
-pub fn draw_polyline<P: Point, D: DrawTarget<Color = C>, C: PixelColor>(
+/// The smallest rectangle holding the pixels of `points` (empty for no points).
+fn pixel_box<P: Point>(view: &View<P>, points: impl Iterator<Item = P>) -> Rectangle {
+    let mut corners: Option<(Pixel, Pixel)> = None;
+    for p in points.map(|p| pixel(view, p)) {
+        corners = Some(match corners {
+            None => (p, p),
+            Some((lo, hi)) => (lo.component_min(p), hi.component_max(p)),
+        });
+    }
+    corners.map_or(Rectangle::zero(), |(lo, hi)| {
+        Rectangle::with_corners(lo, hi)
+    })
+}
+
+/// Paints `color` along the pixels from `a` to `b`, skipping the first pixel when `skip_start`
+/// and the last when `skip_end` (a joint another segment paints).
+fn thin_segment<D: DrawTarget>(
     target: &mut D,
-    view: &View<P>,
-    points: &[P],
-    color: C,
+    (a, b): (Pixel, Pixel),
+    (skip_start, skip_end): (bool, bool),
+    color: D::Color,
 ) -> Result<(), D::Error> {
-    let style = PrimitiveStyle::with_stroke(color, 1);
-    for w in points.windows(2) {
-        Line::new(pixel(view, w[0]), pixel(view, w[1]))
-            .into_styled(style)
-            .draw(target)?;
+    let pixels = Line::new(a, b).points();
+    let count = pixels.count();
+    let from = usize::from(skip_start);
+    let to = count.saturating_sub(usize::from(skip_end && count > usize::from(skip_start)));
+    target.draw_iter(pixels.take(to).skip(from).map(|p| ColoredPixel(p, color)))
+}
+
+/// Strokes the polyline through `pixels`. A 1-pixel stroke paints every pixel once where the
+/// polyline does not cross itself: each joint and each repeated point once. A wider stroke
+/// draws each segment as a styled [`Line`] (joints overlap).
+fn stroke<D: DrawTarget>(
+    target: &mut D,
+    style: &PrimitiveStyle<D::Color>,
+    mut pixels: impl Iterator<Item = Pixel>,
+    skip_ends: bool,
+) -> Result<(), D::Error> {
+    let (Some(color), width) = (style.stroke_color, style.stroke_width) else {
+        return Ok(());
+    };
+    let Some(mut from) = pixels.next() else {
+        return Ok(());
+    };
+    let mut first = true;
+    for to in pixels {
+        if to == from {
+            continue;
+        }
+        if width == 1 {
+            thin_segment(target, (from, to), (!first || skip_ends, skip_ends), color)?;
+        } else if width > 1 {
+            Line::new(from, to).into_styled(*style).draw(target)?;
+        }
+        (from, first) = (to, false);
+    }
+    if first && !skip_ends && width > 0 {
+        // Every point on one pixel: a dot.
+        target.draw_iter(core::iter::once(ColoredPixel(from, color)))?;
     }
     Ok(())
 }
 
-/// Draws the rows and columns of an `nu × nv` grid of points (laid out as
-/// [`Patch::sample_grid`](crate::Patch::sample_grid) writes them) as a wireframe. A grid with
-/// fewer points than `nu × nv` draws what it has.
+/// Sampled points of a curve seen through a [`View`]: an embedded-graphics primitive, drawn
+/// as the polyline through them with a [`PrimitiveStyle`]'s stroke (the fill is ignored).
 ///
-/// # Errors
-/// The target's own drawing error, at the first line that fails.
-pub fn draw_wireframe<P: Point, D: DrawTarget<Color = C>, C: PixelColor>(
-    target: &mut D,
-    view: &View<P>,
-    grid: &[P],
+/// A 1-pixel stroke paints each pixel once, joints included, unless the curve crosses itself;
+/// wider strokes draw each segment as a styled line.
+#[derive(Clone, Copy, Debug)]
+pub struct Curve<'a, P: Point> {
+    points: &'a [P],
+    view: View<P>,
+}
+
+impl<'a, P: Point> Curve<'a, P> {
+    /// The curve through `points` (for example what [`crate::Rope::sample`] wrote).
+    pub fn new(points: &'a [P], view: View<P>) -> Self {
+        Curve { points, view }
+    }
+}
+
+impl<P: Point> Dimensions for Curve<'_, P> {
+    fn bounding_box(&self) -> Rectangle {
+        pixel_box(&self.view, self.points.iter().copied())
+    }
+}
+
+impl<P: Point> Primitive for Curve<'_, P> {}
+
+impl<P: Point, C: PixelColor> StyledDimensions<PrimitiveStyle<C>> for Curve<'_, P> {
+    fn styled_bounding_box(&self, style: &PrimitiveStyle<C>) -> Rectangle {
+        self.bounding_box()
+            .offset((style.stroke_width / 2).min(i32::MAX as u32) as i32)
+    }
+}
+
+impl<P: Point, C: PixelColor> StyledDrawable<PrimitiveStyle<C>> for Curve<'_, P> {
+    type Color = C;
+    type Output = ();
+
+    fn draw_styled<D: DrawTarget<Color = C>>(
+        &self,
+        style: &PrimitiveStyle<C>,
+        target: &mut D,
+    ) -> Result<(), D::Error> {
+        let view = &self.view;
+        stroke(
+            target,
+            style,
+            self.points.iter().map(|&p| pixel(view, p)),
+            false,
+        )
+    }
+}
+
+/// An `nu × nv` grid of sampled points (laid out as
+/// [`Patch::sample_grid`](crate::Patch::sample_grid) writes them) seen through a [`View`]: its
+/// rows and columns drawn with a [`PrimitiveStyle`]'s stroke. A grid with fewer points than
+/// `nu × nv` draws the rows and columns it has.
+///
+/// With a 1-pixel stroke, rows paint the grid points and columns paint only between them, so
+/// a grid whose lines do not cross elsewhere paints each pixel once.
+#[derive(Clone, Copy, Debug)]
+pub struct Wireframe<'a, P: Point> {
+    grid: &'a [P],
     nu: usize,
     nv: usize,
-    color: C,
-) -> Result<(), D::Error> {
-    let style = PrimitiveStyle::with_stroke(color, 1);
-    let at = |i: usize, j: usize| grid.get(j * nu + i).map(|&p| pixel(view, p));
-    for j in 0..nv {
-        for i in 0..nu {
-            let Some(here) = at(i, j) else { continue };
-            for next in [
-                (i + 1 < nu).then(|| at(i + 1, j)).flatten(),
-                (j + 1 < nv).then(|| at(i, j + 1)).flatten(),
-            ]
-            .into_iter()
-            .flatten()
-            {
-                Line::new(here, next).into_styled(style).draw(target)?;
-            }
-        }
+    view: View<P>,
+}
+
+impl<'a, P: Point> Wireframe<'a, P> {
+    /// The wireframe of `grid`, `nu` points a row, `nv` rows.
+    pub fn new(grid: &'a [P], nu: usize, nv: usize, view: View<P>) -> Self {
+        Wireframe { grid, nu, nv, view }
     }
-    Ok(())
+
+    /// The points present: at most `nu × nv`, whole rows only when `nu > 0`.
+    fn present(&self) -> &'a [P] {
+        let len = self.nu.saturating_mul(self.nv).min(self.grid.len());
+        &self.grid[..len]
+    }
+}
+
+impl<P: Point> Dimensions for Wireframe<'_, P> {
+    fn bounding_box(&self) -> Rectangle {
+        pixel_box(&self.view, self.present().iter().copied())
+    }
+}
+
+impl<P: Point> Primitive for Wireframe<'_, P> {}
+
+impl<P: Point, C: PixelColor> StyledDimensions<PrimitiveStyle<C>> for Wireframe<'_, P> {
+    fn styled_bounding_box(&self, style: &PrimitiveStyle<C>) -> Rectangle {
+        self.bounding_box()
+            .offset((style.stroke_width / 2).min(i32::MAX as u32) as i32)
+    }
+}
+
+impl<P: Point, C: PixelColor> StyledDrawable<PrimitiveStyle<C>> for Wireframe<'_, P> {
+    type Color = C;
+    type Output = ();
+
+    fn draw_styled<D: DrawTarget<Color = C>>(
+        &self,
+        style: &PrimitiveStyle<C>,
+        target: &mut D,
+    ) -> Result<(), D::Error> {
+        let (grid, view, nu) = (self.present(), &self.view, self.nu);
+        if nu == 0 {
+            return Ok(());
+        }
+        for row in grid.chunks(nu) {
+            stroke(target, style, row.iter().map(|&p| pixel(view, p)), false)?;
+        }
+        for i in 0..nu {
+            let column = grid.iter().skip(i).step_by(nu).map(|&p| pixel(view, p));
+            stroke(target, style, column, true)?;
+        }
+        Ok(())
+    }
 }
 
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
-    use crate::{Patch, Vec3};
+    use crate::{Patch, Vec2, Vec3};
     use embedded_graphics::mock_display::MockDisplay;
     use embedded_graphics::pixelcolor::BinaryColor;
 
+    fn thin() -> PrimitiveStyle<BinaryColor> {
+        PrimitiveStyle::with_stroke(BinaryColor::On, 1)
+    }
+
     #[test]
-    fn a_flat_patch_draws_as_a_grid() {
+    fn a_flat_patch_draws_as_a_grid_each_pixel_once() {
         let patch = Patch::new(core::array::from_fn::<_, 2, _>(|j| {
             core::array::from_fn::<_, 2, _>(|i| Vec3::new(4.0 * i as f32, -4.0 * j as f32, 0.0))
         }))
@@ -105,9 +245,13 @@ mod tests {
         let mut grid = [Vec3::default(); 9];
         patch.sample_grid(3, 3, &mut grid).unwrap();
         let mut display = MockDisplay::new();
-        display.set_allow_overdraw(true);
         let view = View::new(Vec3::new(0.0f32, 0.0, 0.0), 1.0, 1.0).unwrap();
-        draw_wireframe(&mut display, &view, &grid, 3, 3, BinaryColor::On).unwrap();
+        let wireframe = Wireframe::new(&grid, 3, 3, view);
+        assert_eq!(
+            wireframe.bounding_box(),
+            Rectangle::with_corners(Pixel::new(0, 0), Pixel::new(4, 4))
+        );
+        wireframe.into_styled(thin()).draw(&mut display).unwrap();
         display.assert_pattern(&[
             "#####", //
             "# # #", "#####", "# # #", "#####",
@@ -117,10 +261,35 @@ mod tests {
     #[test]
     fn short_grids_draw_what_they_have() {
         let mut display = MockDisplay::new();
-        display.set_allow_overdraw(true);
-        let view = View::new(crate::Vec2::new(0.0f32, 0.0), 1.0, 1.0).unwrap();
-        let pts = [crate::Vec2::new(0.0f32, 0.0), crate::Vec2::new(2.0, 0.0)];
-        draw_wireframe(&mut display, &view, &pts, 3, 3, BinaryColor::On).unwrap();
+        let view = View::new(Vec2::new(0.0f32, 0.0), 1.0, 1.0).unwrap();
+        let pts = [Vec2::new(0.0f32, 0.0), Vec2::new(2.0, 0.0)];
+        Wireframe::new(&pts, 3, 3, view)
+            .into_styled(thin())
+            .draw(&mut display)
+            .unwrap();
         display.assert_pattern(&["###"]);
+    }
+
+    #[test]
+    fn repeated_points_and_dots_paint_once() {
+        let view = View::new(Vec2::new(0.0f32, 0.0), 1.0, 1.0).unwrap();
+        let pts = [
+            Vec2::new(0.0f32, 0.0),
+            Vec2::new(0.2, 0.0), // the same pixel
+            Vec2::new(3.0, 0.0),
+            Vec2::new(3.0, -2.0),
+        ];
+        let mut display = MockDisplay::new();
+        Curve::new(&pts, view)
+            .into_styled(thin())
+            .draw(&mut display)
+            .unwrap();
+        display.assert_pattern(&["####", "   #", "   #"]);
+        let mut dot = MockDisplay::new();
+        Curve::new(&pts[..2], view)
+            .into_styled(thin())
+            .draw(&mut dot)
+            .unwrap();
+        dot.assert_pattern(&["#"]);
     }
 }

@@ -55,7 +55,7 @@ fn wang_count<S: Scalar>(degree: usize, half_m: S, tol: S) -> usize {
     if !x.is_finite() {
         return MAX_SEGMENTS;
     }
-    x.ceil_count(MAX_SEGMENTS).max(1)
+    x.ceil_usize(MAX_SEGMENTS).max(1)
 }
 
 /// The number of uniform segments (samples minus one) that keeps the polyline of `curve`

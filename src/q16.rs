@@ -312,7 +312,7 @@ impl Scalar for Q16 {
     }
 
     #[inline]
-    fn ceil_count(self, max: usize) -> usize {
+    fn ceil_usize(self, max: usize) -> usize {
         let bits = self.to_bits();
         if bits <= 0 {
             return 0;
@@ -459,9 +459,9 @@ mod tests {
         assert_eq!(q(f64::NAN), Q16::ZERO);
         assert_eq!(q(1e9), Q16::MAX);
         assert_eq!(q(-0.5).to_f64(), -0.5);
-        assert_eq!(q(2.5).ceil_count(10), 3);
-        assert_eq!(q(2.0).ceil_count(10), 2);
-        assert_eq!(q(-2.0).ceil_count(10), 0);
+        assert_eq!(q(2.5).ceil_usize(10), 3);
+        assert_eq!(q(2.0).ceil_usize(10), 2);
+        assert_eq!(q(-2.0).ceil_usize(10), 0);
         assert_eq!(Q16::from_i16(-16383).to_f64(), -16383.0);
         assert_eq!(q(2.5).floor_i32(), 2);
         assert_eq!(q(-2.5).floor_i32(), -3);

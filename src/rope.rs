@@ -186,13 +186,17 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     }
 
     /// Draws the rope: the curve that `smoothing` makes of the particles, sampled into `out`
-    /// (see [`smooth::sample`] for the count and the `Q16` path). The one way to draw a
-    /// rope; the first and last points are the end particles.
+    /// with the format's default sampler, and returns the count (see
+    /// [`Smoothed::sample`](smooth::Smoothed::sample): `(N-1)·s + 1` points for the splines
+    /// and the polyline, `s` segments a span). The one way to draw a rope; the first and last
+    /// points are the end particles. For another sampler, build the curve with
+    /// [`Smoothed::open`](smooth::Smoothed::open) from [`positions`](MassSpring::positions).
     ///
     /// # Errors
-    /// [`Error::BufferTooSmall`] when `out` holds fewer than 2 points.
+    /// [`Error::BufferTooSmall`] when `out` holds fewer than `N` points for the splines and
+    /// the polyline, or 2 for one Bézier.
     pub fn sample(&self, smoothing: Smoothing, out: &mut [P]) -> Result<usize, Error> {
-        smooth::sample(smoothing, self.system.position_array(), out)
+        smooth::Smoothed::open(smoothing, self.system.position_array())?.sample(out)
     }
 
     /// Length of the drawn curve within `accuracy`.
@@ -206,7 +210,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         accuracy: P::Scalar,
     ) -> Result<P::Scalar, Error> {
         check_positive(accuracy)?;
-        let length = smooth::length(smoothing, self.system.position_array(), accuracy)?;
+        let length =
+            smooth::Smoothed::open(smoothing, self.system.position_array())?.length(accuracy);
         if length.is_finite() {
             Ok(length)
         } else {

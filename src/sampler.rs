@@ -46,6 +46,57 @@ pub trait Sampler<P: Point, const N: usize> {
     /// [`Error::BufferTooSmall`] when `out` cannot hold the smallest run the sampler makes
     /// (2 points for most). Nothing else can fail: the curve was checked when built.
     fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error>;
+
+    /// Samples pieces joined end to end (the spans of a spline, a closed loop, a polyline)
+    /// into `out`: each piece gets an equal share of the buffer and is sampled by
+    /// [`sample`](Self::sample), and a joint shared by two pieces is written once. Returns the
+    /// count, `pieces·(c - 1) + 1`, where `c` is what the sampler writes into a share of
+    /// `⌊(out.len() - 1) / pieces⌋ + 1` points: the whole share for most samplers, `2^k + 1`
+    /// for [`Subdivide`] (dyadic, so `Q16` needs no rounded `t`), `M` for a [`BernsteinTable`].
+    /// Each piece's end should be the next one's start; the last piece's end is written last.
+    ///
+    /// ```
+    /// use dunas::{Bezier, Vec2, sampler::{Sampler, BernsteinTable}};
+    /// let a = Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 1.0), Vec2::new(2.0, 1.0), Vec2::new(3.0, 0.0)])?;
+    /// let b = Bezier::new([Vec2::new(3.0f32, 0.0), Vec2::new(4.0, -1.0), Vec2::new(5.0, -1.0), Vec2::new(6.0, 0.0)])?;
+    /// let mut out = [Vec2::default(); 40];
+    /// let n = BernsteinTable::<f32, 4, 9>::new().sample_joined(&[a, b], &mut out)?;
+    /// assert_eq!(n, 17); // 2 pieces of 8 segments
+    /// assert_eq!((out[8], out[16]), (a.end(), b.end()));
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::BufferTooSmall`] when a share is smaller than the sampler's smallest run (it
+    /// needs `pieces + 1` points for most samplers); [`Error::InvalidParameter`] for no pieces,
+    /// or a sampler that writes fewer than 2 points or more than its share.
+    fn sample_joined(&self, pieces: &[Bezier<P, N>], out: &mut [P]) -> Result<usize, Error> {
+        let Some(last) = pieces.last() else {
+            return Err(Error::InvalidParameter);
+        };
+        let len = out.len();
+        let total = |per_piece: usize| Error::BufferTooSmall {
+            needed: pieces.len().saturating_mul(per_piece - 1).saturating_add(1),
+            got: len,
+        };
+        let share = out.len().min(MAX_SAMPLES).saturating_sub(1) / pieces.len() + 1;
+        if share < 2 {
+            return Err(total(2));
+        }
+        let mut at = 0;
+        for piece in pieces {
+            let slot = out.get_mut(at..at + share).ok_or(total(2))?;
+            match self.sample(piece, slot) {
+                Ok(c) if (2..=share).contains(&c) => at += c - 1,
+                // A sampler that breaks its contract (fewer than 2 points, more than asked).
+                Ok(_) => return Err(Error::InvalidParameter),
+                Err(Error::BufferTooSmall { needed, .. }) => return Err(total(needed.max(2))),
+                Err(e) => return Err(e),
+            }
+        }
+        *out.get_mut(at).ok_or(total(2))? = last.end();
+        Ok(at + 1)
+    }
 }
 
 /// Uniform count for the samplers that fill the whole buffer.
@@ -383,13 +434,13 @@ pub(crate) fn subdivide_into<P: Point, const N: usize>(
     }
 }
 
-/// The sampler [`Bezier::sample`] uses: [`DeCasteljau`] in floats (exact endpoints,
-/// format-rounding error at any degree and count) and [`Subdivide`] in `Q16` (no
-/// multiplications, dyadic `t`).
+/// The sampler [`Bezier::sample`] and the smoothed curves use: [`DeCasteljau`] in floats
+/// (exact endpoints, format-rounding error at any degree and count) and [`Subdivide`] in
+/// `Q16` (no multiplications, dyadic `t`).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Auto;
+pub struct DefaultSampler;
 
-impl<P: Point, const N: usize> Sampler<P, N> for Auto {
+impl<P: Point, const N: usize> Sampler<P, N> for DefaultSampler {
     fn sample(&self, curve: &Bezier<P, N>, out: &mut [P]) -> Result<usize, Error> {
         if P::Scalar::FIXED_POINT {
             Subdivide::default().sample(curve, out)
@@ -400,13 +451,13 @@ impl<P: Point, const N: usize> Sampler<P, N> for Auto {
 }
 
 impl<P: Point, const N: usize> Bezier<P, N> {
-    /// Samples the curve into `out` with the format's default sampler ([`Auto`]) and
+    /// Samples the curve into `out` with the format's default sampler ([`DefaultSampler`]) and
     /// returns the count written: `out.len()` in floats, the largest `2^k + 1 <= out.len()`
     /// in `Q16`.
     ///
     /// # Errors
     /// [`Error::BufferTooSmall`] when `out` holds fewer than 2 points.
     pub fn sample(&self, out: &mut [P]) -> Result<usize, Error> {
-        Auto.sample(self, out)
+        DefaultSampler.sample(self, out)
     }
 }

@@ -80,8 +80,8 @@ pub trait Scalar:
     /// not overflow for coordinates inside the format's range (`Q16` uses a 64-bit
     /// accumulator, so vectors longer than 181 are fine).
     fn norm(xs: &[Self]) -> Self;
-    /// `ceil(self)` as a count, clamped to `0..=max`; NaN gives `max`.
-    fn ceil_count(self, max: usize) -> usize;
+    /// `ceil(self)` as a `usize`, clamped to `0..=max`; NaN gives `max`.
+    fn ceil_usize(self, max: usize) -> usize;
     /// `floor(self)` as an `i32`, saturating at the `i32` range; NaN gives 0.
     fn floor_i32(self) -> i32;
 
@@ -154,7 +154,7 @@ macro_rules! impl_float {
                 Scalar::sqrt(s)
             }
             #[inline]
-            fn ceil_count(self, max: usize) -> usize {
+            fn ceil_usize(self, max: usize) -> usize {
                 if self.is_nan() || self >= max as $t {
                     return max;
                 }
@@ -227,13 +227,13 @@ mod tests {
     }
 
     #[test]
-    fn ceil_count_clamps_and_rounds_up() {
-        assert_eq!(2.0f64.ceil_count(100), 2);
-        assert_eq!(2.0001f64.ceil_count(100), 3);
-        assert_eq!((-5.0f32).ceil_count(100), 0);
-        assert_eq!(f32::NAN.ceil_count(100), 100);
-        assert_eq!(f64::INFINITY.ceil_count(100), 100);
-        assert_eq!(1e30f32.ceil_count(100), 100);
+    fn ceil_usize_clamps_and_rounds_up() {
+        assert_eq!(2.0f64.ceil_usize(100), 2);
+        assert_eq!(2.0001f64.ceil_usize(100), 3);
+        assert_eq!((-5.0f32).ceil_usize(100), 0);
+        assert_eq!(f32::NAN.ceil_usize(100), 100);
+        assert_eq!(f64::INFINITY.ceil_usize(100), 100);
+        assert_eq!(1e30f32.ceil_usize(100), 100);
     }
 
     #[test]

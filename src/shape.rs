@@ -10,13 +10,13 @@ pub trait Shape {
     /// Number of particles.
     const LEN: usize;
     /// One `T` per particle.
-    type Of<T: Copy>: Copy;
+    type PerParticle<T: Copy>: Copy;
     /// An array with every element `value`.
-    fn filled<T: Copy>(value: T) -> Self::Of<T>;
+    fn filled<T: Copy>(value: T) -> Self::PerParticle<T>;
     /// The elements in order (row by row for a grid).
-    fn flat<T: Copy>(a: &Self::Of<T>) -> &[T];
+    fn flat<T: Copy>(a: &Self::PerParticle<T>) -> &[T];
     /// The elements in order, mutable.
-    fn flat_mut<T: Copy>(a: &mut Self::Of<T>) -> &mut [T];
+    fn flat_mut<T: Copy>(a: &mut Self::PerParticle<T>) -> &mut [T];
 }
 
 /// `N` particles in a row: a rope. Storage `[T; N]`.
@@ -30,7 +30,7 @@ pub struct Grid<const U: usize, const V: usize>;
 
 impl<const N: usize> Shape for Line<N> {
     const LEN: usize = N;
-    type Of<T: Copy> = [T; N];
+    type PerParticle<T: Copy> = [T; N];
     #[inline]
     fn filled<T: Copy>(value: T) -> [T; N] {
         [value; N]
@@ -47,7 +47,7 @@ impl<const N: usize> Shape for Line<N> {
 
 impl<const U: usize, const V: usize> Shape for Grid<U, V> {
     const LEN: usize = U * V;
-    type Of<T: Copy> = [[T; U]; V];
+    type PerParticle<T: Copy> = [[T; U]; V];
     #[inline]
     fn filled<T: Copy>(value: T) -> [[T; U]; V] {
         [[value; U]; V]

@@ -15,7 +15,7 @@ pub const MAX_SUBSTEPS: u16 = 64;
 /// and the highest damping rate (1/s) of the springs' damping, for particles of inverse
 /// masses `w`. One pass over the springs and two square roots per particle.
 pub(crate) fn spring_bound<S: Scalar, Sh: Shape>(
-    w: &Sh::Of<S>,
+    w: &Sh::PerParticle<S>,
     topology: &impl Topology<S>,
 ) -> (S, S) {
     let w = Sh::flat(w);
@@ -73,7 +73,7 @@ pub(crate) fn plan<S: Scalar>(dt: S, rate: S, per_rate: S) -> Result<(u16, S, bo
     if scale <= S::ZERO {
         return Ok((1, dt, false));
     }
-    let (n, h, capped) = match (dt * scale).ceil_count(MAX_SUBSTEPS as usize + 1).max(1) {
+    let (n, h, capped) = match (dt * scale).ceil_usize(MAX_SUBSTEPS as usize + 1).max(1) {
         1 => (1, dt, false),
         n if n > MAX_SUBSTEPS as usize => (MAX_SUBSTEPS, S::ONE / scale, true),
         n => (n as u16, dt / S::from_i16(n as i16), false),

@@ -39,7 +39,7 @@ pub struct StepInfo<S> {
 #[derive(Clone)]
 pub struct MassSpring<P: Point, Sh: Shape, T, I = SymplecticEuler> {
     state: State<P, Sh>,
-    inv_mass: Sh::Of<P::Scalar>,
+    inv_mass: Sh::PerParticle<P::Scalar>,
     topology: T,
     time: P::Scalar,
     /// `ω + γ` of the springs alone (see [`stiffness_bound`](Self::stiffness_bound)), kept
@@ -111,8 +111,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// [`Material::check`](crate::Material::check) for its material, and those of
     /// [`Settings::check`].
     pub fn new(
-        positions: Sh::Of<P>,
-        inv_mass: Sh::Of<P::Scalar>,
+        positions: Sh::PerParticle<P>,
+        inv_mass: Sh::PerParticle<P::Scalar>,
         topology: T,
         settings: Settings<P, I>,
     ) -> Result<Self, Error> {
@@ -158,7 +158,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
 
     /// Positions in the layout's own array (`[P; N]` or `[[P; U]; V]`).
     #[inline]
-    pub fn position_array(&self) -> &Sh::Of<P> {
+    pub fn position_array(&self) -> &Sh::PerParticle<P> {
         &self.state.pos
     }
 

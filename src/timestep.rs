@@ -42,7 +42,7 @@ impl<S: Scalar> FixedTimestep<S> {
         if !(step > S::ZERO && step <= max_frame && max_frame.is_finite()) {
             return Err(Error::InvalidParameter);
         }
-        let max_steps = (max_frame / step).ceil_count(usize::MAX);
+        let max_steps = (max_frame / step).ceil_usize(usize::MAX);
         if max_steps > MAX_STEPS_PER_FRAME as usize {
             return Err(Error::InvalidParameter);
         }

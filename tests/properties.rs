@@ -3,7 +3,7 @@
 #![cfg(any(feature = "std", feature = "libm"))]
 
 use dunas::sampler::{BernsteinTable, DeCasteljau, Sampler, Subdivide};
-use dunas::smooth::{self, Smoothing};
+use dunas::smooth::{Smoothed, Smoothing};
 use dunas::{Bezier, Patch, Point, Scalar, Vec2, Vec3, lod};
 use proptest::prelude::*;
 
@@ -146,7 +146,7 @@ proptest! {
     #[test]
     fn catmull_rom_passes_through_random_particles(p in pts::<7>(500.0)) {
         let mut out = [Vec2::default(); 6 * 4 + 1];
-        smooth::sample(Smoothing::CatmullRom, &p, &mut out).unwrap();
+        Smoothed::open(Smoothing::CatmullRom, &p).unwrap().sample(&mut out).unwrap();
         for (k, pk) in p.iter().enumerate() {
             prop_assert!((out[4 * k] - *pk).length() <= 1e-9);
         }

@@ -6,7 +6,7 @@ mod common;
 
 use common::{ExactCurve, Rng};
 use dunas::sampler::{BernsteinTable, DeCasteljau, ForwardDiff, Horner, Sampler, Subdivide};
-use dunas::{Scalar, Vec2};
+use dunas::{Point, Scalar, Vec2};
 
 /// Largest control coordinate `R` and longest control leg `D` of a grid curve.
 fn sizes<const N: usize>(grid: &[[i64; 2]; N]) -> (f64, f64) {
@@ -240,4 +240,49 @@ fn subdivide_writes_the_largest_dyadic_count_that_fits() {
         0.0,
         "dyadic parameters are exact in f64 here"
     );
+}
+
+/// Splines and loops go through the same engine as single curves: a `BernsteinTable` of the
+/// span size samples a B-spline like the default sampler, and a `Q16` closed loop takes the
+/// dyadic path (`K·2^k + 1` points, each within the subdivision bound of the `f64` loop).
+#[cfg(feature = "fixed")]
+#[test]
+fn splines_and_loops_use_every_sampler() {
+    use dunas::Q16;
+    use dunas::smooth::{Smoothed, Smoothing};
+    let ring: [Vec2<f64>; 6] = core::array::from_fn(|i| {
+        let a = i as f64 * std::f64::consts::TAU / 6.0;
+        Vec2::new(300.0 * a.cos(), 200.0 * a.sin())
+    });
+    let (mut by_default, mut by_table) = ([Vec2::default(); 64], [Vec2::default(); 64]);
+    let open = Smoothed::open(Smoothing::BSpline, &ring).unwrap();
+    let n = open.sample(&mut by_default).unwrap();
+    let m = open
+        .sample_with(&BernsteinTable::<f64, 4, 13>::new(), &mut by_table)
+        .unwrap();
+    assert_eq!((n, m), (61, 61));
+    for (a, b) in by_default.iter().zip(&by_table).take(n) {
+        assert!((*a - *b).length() < 1e-9, "{a:?} vs {b:?}");
+    }
+
+    let fixed = ring.map(|p| Vec2::<Q16>::from_f64(p.x, p.y));
+    let to_f64 = |q: Vec2<Q16>| Vec2::new(q.x.to_f64(), q.y.to_f64());
+    let mut float_out = [Vec2::default(); 49];
+    let mut fixed_out = [Vec2::<Q16>::default(); 60]; // room for 9 a span: the dyadic 8 is used
+    let floats = Smoothed::closed(Smoothing::CatmullRom, &fixed.map(to_f64))
+        .unwrap()
+        .sample(&mut float_out)
+        .unwrap();
+    let fixeds = Smoothed::closed(Smoothing::CatmullRom, &fixed)
+        .unwrap()
+        .sample(&mut fixed_out)
+        .unwrap();
+    assert_eq!((floats, fixeds), (49, 49));
+    // The handles' rounded 1/6 (2⁻¹⁷ of a neighbour distance up to 600 px: 4.6e-3 px) plus
+    // three halvings of a cubic (3·3/2 units of 2⁻¹⁶).
+    let bound = 600.0 * 2f64.powi(-17) + 4.5 * 2f64.powi(-16);
+    for (f, q) in float_out.iter().zip(&fixed_out) {
+        assert!((*f - to_f64(*q)).length() < bound, "{f:?} vs {q:?}");
+    }
+    assert_eq!(fixed_out[0], fixed_out[48]);
 }

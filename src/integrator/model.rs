@@ -7,8 +7,8 @@ use crate::{Point, Scalar};
 
 /// Positions and velocities of every particle: what an integrator advances.
 pub struct State<P: Point, Sh: Shape> {
-    pub(crate) pos: Sh::Of<P>,
-    pub(crate) vel: Sh::Of<P>,
+    pub(crate) pos: Sh::PerParticle<P>,
+    pub(crate) vel: Sh::PerParticle<P>,
 }
 
 impl<P: Point, Sh: Shape> Clone for State<P, Sh> {
@@ -21,7 +21,7 @@ impl<P: Point, Sh: Shape> Copy for State<P, Sh> {}
 
 /// What stays fixed during a substep: masses, springs, gravity, damping and the clock.
 pub struct Model<'a, P: Point, Sh: Shape, T> {
-    pub(crate) inv_mass: &'a Sh::Of<P::Scalar>,
+    pub(crate) inv_mass: &'a Sh::PerParticle<P::Scalar>,
     pub(crate) topology: &'a T,
     pub(crate) gravity: P,
     pub(crate) damping: P::Scalar,
@@ -133,7 +133,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         state: &State<P, Sh>,
         forces: &mut F,
         springs: bool,
-    ) -> (Sh::Of<P>, bool) {
+    ) -> (Sh::PerParticle<P>, bool) {
         let mut a = Sh::filled(P::default());
         let ok = self.accelerations(
             Sh::flat(&state.pos),
