@@ -235,9 +235,7 @@ fn energy_swing(integrator: AnyIntegrator, accuracy: Accuracy) -> (f64, f64) {
 fn energy_chart(run: &Run, rows: &mut Vec<Vec<String>>) -> String {
     let levels = [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine];
     let mut series = Vec::new();
-    let mut table = String::from(
-        "| integrator | Fast | Balanced | Fine |\n|---|---|---|---|\n",
-    );
+    let mut table = String::from("| integrator | Fast | Balanced | Fine |\n|---|---|---|---|\n");
     for (name, integrator) in EXPLICIT {
         let mut pts = Vec::new();
         let mut cells = Vec::new();
@@ -426,6 +424,7 @@ pub fn run(run: &mut Run) {
         best("pendulum"),
         best("chain_mode"),
         best("catenary")
-    ) + "\n\n" + &energy;
+    ) + "\n\n"
+        + &energy;
     run.section("(b) Integrators: cost against error", &text);
 }
