@@ -57,6 +57,11 @@ fn pixel_box<P: Point>(view: &View<P>, points: impl Iterator<Item = P>) -> Recta
     })
 }
 
+/// `bounds` grown by half the stroke on every side.
+fn widened<C: PixelColor>(bounds: Rectangle, style: &PrimitiveStyle<C>) -> Rectangle {
+    bounds.offset((style.stroke_width / 2).min(i32::MAX as u32) as i32)
+}
+
 /// Paints `color` along the pixels from `a` to `b`, skipping the first pixel when `skip_start`
 /// and the last when `skip_end` (a joint another segment paints).
 fn thin_segment<D: DrawTarget>(
@@ -134,8 +139,7 @@ impl<P: Point> Primitive for Curve<'_, P> {}
 
 impl<P: Point, C: PixelColor> StyledDimensions<PrimitiveStyle<C>> for Curve<'_, P> {
     fn styled_bounding_box(&self, style: &PrimitiveStyle<C>) -> Rectangle {
-        self.bounding_box()
-            .offset((style.stroke_width / 2).min(i32::MAX as u32) as i32)
+        widened(self.bounding_box(), style)
     }
 }
 
@@ -196,8 +200,7 @@ impl<P: Point> Primitive for Wireframe<'_, P> {}
 
 impl<P: Point, C: PixelColor> StyledDimensions<PrimitiveStyle<C>> for Wireframe<'_, P> {
     fn styled_bounding_box(&self, style: &PrimitiveStyle<C>) -> Rectangle {
-        self.bounding_box()
-            .offset((style.stroke_width / 2).min(i32::MAX as u32) as i32)
+        widened(self.bounding_box(), style)
     }
 }
 

@@ -2,6 +2,8 @@
 //! calibration, the thesis's other topologies, and the game-loop clock.
 #![cfg(any(feature = "std", feature = "libm"))]
 
+mod common;
+
 use dunas::Settings;
 use dunas::integrator::{Integrator, Rk4};
 use dunas::smooth::Smoothing;
@@ -389,26 +391,9 @@ fn state_sizes_meet_the_budgets() {
 /// largest swing of its total energy over 3 s, relative to the energy its fall releases
 /// (`m·g·L/2`), for an integrator at an accuracy.
 fn energy_swing<I: Integrator>(integrator: I, accuracy: Accuracy) -> (f64, u16) {
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -200.0),
-        accuracy,
-        ..Settings::default()
-    }
-    .with_integrator(integrator);
-    let material = Material {
-        stiffness: 1500.0 * 7.0,
-        damping: 0.0,
-    };
-    let mut rope: Rope<Vec2<f64>, 8, 7, I> = Rope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(70.0, 0.0),
-        7.0,
-        material,
-        settings,
-    )
-    .unwrap();
+    let mut rope = common::released_rope(integrator, accuracy);
     let e0 = rope.energy();
-    let scale = 7.0 * 200.0 * 70.0 / 2.0;
+    let scale = common::RELEASED_ROPE_FALL_ENERGY;
     let (mut swing, mut substeps) = (0.0f64, 0);
     for _ in 0..180 {
         substeps = rope.step(1.0 / 60.0).unwrap().substeps;

@@ -8,9 +8,12 @@ use std::time::Instant;
 use dunas::integrator::{AnyIntegrator, ImplicitEuler, Integrator, Xpbd};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::{Accuracy, MassSpring, Rope, Settings, Vec2};
+use dunas::{Accuracy, MassSpring, Settings, Vec2};
 
-use crate::common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period};
+use crate::common::{
+    RELEASED_ROPE_FALL_ENERGY, catenary_sag_error, chain_between_pins, jacobi_eigen, period,
+    released_rope,
+};
 use crate::report::{Run, Series, chart, csv, num};
 
 type Chain<const N: usize, const CAP: usize> =
@@ -197,25 +200,8 @@ fn catenary(integrator: AnyIntegrator) -> (f64, f64) {
 /// for 3 s at an accuracy level: CPU ns per simulated second and the largest swing of its
 /// total energy, relative to the energy its fall releases (`m·g·L/2`). The exact answer is 0.
 fn energy_swing(integrator: AnyIntegrator, accuracy: Accuracy) -> (f64, f64) {
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -200.0),
-        accuracy,
-        ..Settings::default()
-    }
-    .with_integrator(integrator);
-    let material = Material {
-        stiffness: 1500.0 * 7.0,
-        damping: 0.0,
-    };
-    let mut rope: Rope<Vec2<f64>, 8, 7, AnyIntegrator> = Rope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(70.0, 0.0),
-        7.0,
-        material,
-        settings,
-    )
-    .expect("valid");
-    let (e0, scale) = (rope.energy(), 7.0 * 200.0 * 70.0 / 2.0);
+    let mut rope = released_rope(integrator, accuracy);
+    let (e0, scale) = (rope.energy(), RELEASED_ROPE_FALL_ENERGY);
     let (spent, energies) = timed(
         &mut rope,
         180,

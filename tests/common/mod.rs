@@ -267,3 +267,32 @@ pub fn cloth_materials<S: dunas::Scalar>() -> [Material<S>; 3] {
         damping: S::from_f64(c),
     })
 }
+
+/// The energy its fall releases, `m·g·L/2`, for [`released_rope`]: the scale of its energy error.
+pub const RELEASED_ROPE_FALL_ENERGY: f64 = 7.0 * 200.0 * 70.0 / 2.0;
+
+/// A released, undamped 8-particle rope (70 units long, 7 mass units, stiff springs, gravity
+/// 200), pinned at its first particle and lying horizontal: what the energy checks step.
+pub fn released_rope<I: dunas::Integrator>(
+    integrator: I,
+    accuracy: dunas::Accuracy,
+) -> dunas::Rope<Vec2<f64>, 8, 7, I> {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -200.0),
+        accuracy,
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: 1500.0 * 7.0,
+        damping: 0.0,
+    };
+    dunas::Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        material,
+        settings,
+    )
+    .expect("a valid rope")
+}
