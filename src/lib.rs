@@ -92,6 +92,8 @@ mod aabb;
 pub mod ascii;
 mod catenary;
 mod cloth;
+pub mod collider;
+pub mod contact;
 pub mod curve;
 mod error;
 pub mod force;

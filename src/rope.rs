@@ -3,12 +3,14 @@
 use core::ops::{Deref, DerefMut};
 
 use crate::catenary::Catenary;
+use crate::contact::Contacts;
 use crate::error::{check_points, check_positive};
+use crate::force::ForceField;
 use crate::integrator::{Integrator, SymplecticEuler};
 use crate::shape::Line;
 use crate::smooth::{self, Smoothing};
 use crate::spring::{Material, Springs};
-use crate::system::MassSpring;
+use crate::system::{MassSpring, StepInfo};
 use crate::{Error, Point, Scalar, Settings};
 
 /// A rope of `N` particles with room for `CAP` springs of one material (by default `N`: the
@@ -183,6 +185,49 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         Ok(Rope {
             system: MassSpring::new(positions, inv_mass, springs, settings)?,
         })
+    }
+
+    /// Advances by `dt` seconds with `forces`, resolving `contacts` after every substep: on
+    /// the drawn curve for [`Touch::Curve`](crate::contact::Touch::Curve), which catches a peg
+    /// thinner than the particle spacing, or at the particles. See [`contact`](crate::contact)
+    /// for the response, its cost and the tunnelling bound.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// use dunas::collider::Collider;
+    /// use dunas::contact::{Contacts, Touch};
+    ///
+    /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), damping: 1.0, ..Settings::default() };
+    /// let material = Material { stiffness: 2000.0, damping: 1.0 };
+    /// let mut rope: Rope<Vec2<f32>, 8> =
+    ///     Rope::new(Vec2::new(-3.5, 0.0), Vec2::new(3.5, 0.0), 1.0, material, settings)?;
+    /// rope.set_inv_mass(7, 0.0)?; // both ends held
+    /// let peg = [Collider::ball(Vec2::new(0.2, -0.5), 0.05)?]; // a tenth of the spacing
+    /// let contacts = Contacts::new(&peg, 0.02, Touch::Curve(Smoothing::BSpline))?;
+    /// for _ in 0..240 {
+    ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
+    /// }
+    /// let mut curve = [Vec2::default(); 64];
+    /// let n = rope.sample(Smoothing::BSpline, &mut curve)?;
+    /// // The drawn rope rests on the peg instead of sagging through it.
+    /// let above = curve[..n].iter().filter(|p| (p.x - 0.2).abs() < 0.05).all(|p| p.y > -0.5);
+    /// assert!(above);
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`MassSpring::step_with`].
+    pub fn step_touching<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let floor = contacts.rate(self.system.top_speed(dt));
+        self.system
+            .step_resolving(dt, forces, floor, |state, inv_mass, lag| {
+                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, lag)
+            })
     }
 
     /// Draws the rope: the curve that `smoothing` makes of the particles, sampled into `out`

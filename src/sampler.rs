@@ -306,16 +306,7 @@ impl<S: Scalar, const N: usize, const M: usize> BernsteinTable<S, N, M> {
         };
         let mut weights = [[S::ZERO; N]; M];
         for (i, w) in weights.iter_mut().enumerate() {
-            let t = S::ratio(i as u32, (M - 1) as u32);
-            let s = S::ONE - t;
-            w[0] = S::ONE;
-            for r in 1..N {
-                w[r] = w[r - 1] * t;
-                for j in (1..r).rev() {
-                    w[j] = w[j] * s + w[j - 1] * t;
-                }
-                w[0] = w[0] * s;
-            }
+            bernstein_weights(S::ratio(i as u32, (M - 1) as u32), w);
         }
         BernsteinTable { weights }
     }
@@ -323,6 +314,22 @@ impl<S: Scalar, const N: usize, const M: usize> BernsteinTable<S, N, M> {
     /// The weight row for sample `i` (`None` past the end).
     pub fn row(&self, i: usize) -> Option<&[S; N]> {
         self.weights.get(i)
+    }
+}
+
+/// The Bernstein weights of degree `w.len() - 1` at `t`, by the convex recursion
+/// (`n²/2` multiply-adds, every weight in `[0, 1]`).
+pub(crate) fn bernstein_weights<S: Scalar>(t: S, w: &mut [S]) {
+    let s = S::ONE - t;
+    if let Some(first) = w.first_mut() {
+        *first = S::ONE;
+    }
+    for r in 1..w.len() {
+        w[r] = w[r - 1] * t;
+        for j in (1..r).rev() {
+            w[j] = w[j] * s + w[j - 1] * t;
+        }
+        w[0] = w[0] * s;
     }
 }
 

@@ -34,7 +34,7 @@
 
 use crate::error::check_points;
 use crate::sampler::{DefaultSampler, Sampler};
-use crate::{Bezier, Error, Point, Scalar};
+use crate::{Aabb, Bezier, Error, Point, Scalar};
 
 /// How a row of particles becomes a curve. See the [module docs](self).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -60,6 +60,8 @@ pub enum Smoothing {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Smoothed<P, const K: usize> {
     pieces: Pieces<P, K>,
+    method: Smoothing,
+    closed: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +92,11 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(particles), K - 1),
             Smoothing::Polyline => Pieces::Straight(segments(particles), K - 1),
         };
-        Ok(Smoothed { pieces })
+        Ok(Smoothed {
+            pieces,
+            method,
+            closed: false,
+        })
     }
 
     /// The closed curve through a ring of particles (a loop topology): `K` spans, wrapping
@@ -145,7 +151,11 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
                 K,
             ),
         };
-        Ok(Smoothed { pieces })
+        Ok(Smoothed {
+            pieces,
+            method,
+            closed: true,
+        })
     }
 
     /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
@@ -191,6 +201,81 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         match self.pieces {
             Pieces::Whole(_) => 1,
             Pieces::Cubic(_, count) | Pieces::Straight(_, count) => count,
+        }
+    }
+
+    /// The point of span `span` at `t` in `[0, 1]` (`t` clamped; a span past the last is the
+    /// last). De Casteljau on the span: 6 lerps for a cubic span, `K²/2` for one Bézier.
+    pub fn point(&self, span: usize, t: P::Scalar) -> P {
+        let t = crate::curve::clamp_unit(t);
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.eval(t),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].eval(t),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].eval(t),
+        }
+    }
+
+    /// The box of span `span`'s control points, which holds the span (convex hull property).
+    pub fn span_bounds(&self, span: usize) -> Aabb<P> {
+        let points: &[P] = match &self.pieces {
+            Pieces::Whole(curve) => curve.points(),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].points(),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].points(),
+        };
+        Aabb::from_points(points).unwrap_or(Aabb::point(P::default()))
+    }
+
+    /// How much each particle weighs in the point of span `span` at `t`: the point is
+    /// `Σ weights[i] · particles[i]`, and the weights sum to 1. At most 4 are non-zero for the
+    /// splines, 2 for the polyline, all `K` for one Bézier; Catmull-Rom's can be negative
+    /// (down to -1/16, with `Σ|w| <= 5/4`). A force or a correction at that point reaches the
+    /// particles through these weights.
+    pub fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
+        let t = crate::curve::clamp_unit(t);
+        let zero = P::Scalar::ZERO;
+        *weights = [zero; K];
+        let span = span.min(self.span_count() - 1);
+        let (t2, sixth, half) = (t * t, P::Scalar::ratio(1, 6), P::Scalar::ratio(1, 2));
+        let t3 = t2 * t;
+        let n = |k: i16| P::Scalar::from_i16(k);
+        let local = match self.method {
+            Smoothing::Bezier => {
+                crate::sampler::bernstein_weights(t, weights);
+                return;
+            }
+            Smoothing::Polyline => [zero, P::Scalar::ONE - t, t, zero],
+            Smoothing::BSpline => {
+                let s = P::Scalar::ONE - t;
+                [
+                    s * s * s * sixth,
+                    (n(3) * t3 - n(6) * t2 + n(4)) * sixth,
+                    (n(-3) * t3 + n(3) * t2 + n(3) * t + P::Scalar::ONE) * sixth,
+                    t3 * sixth,
+                ]
+            }
+            Smoothing::CatmullRom => [
+                (-t3 + n(2) * t2 - t) * half,
+                (n(3) * t3 - n(5) * t2 + n(2)) * half,
+                (n(-3) * t3 + n(4) * t2 + t) * half,
+                (t3 - t2) * half,
+            ],
+        };
+        // Local weights for particles span-1 ..= span+2; open ends reflect a phantom particle
+        // through the end one (2·p0 - p1), as the spans were built.
+        for (k, w) in local.into_iter().enumerate() {
+            let i = span as isize + k as isize - 1;
+            let last = K as isize - 1;
+            if self.closed {
+                weights[i.rem_euclid(K as isize) as usize] += w;
+            } else if i < 0 {
+                weights[0] += w + w;
+                weights[1] -= w;
+            } else if i > last {
+                weights[K - 1] += w + w;
+                weights[K - 2] -= w;
+            } else {
+                weights[i as usize] += w;
+            }
         }
     }
 
@@ -375,6 +460,44 @@ mod tests {
             Smoothed::closed(Smoothing::Bezier, &ring),
             Err(Error::InvalidParameter)
         );
+    }
+
+    #[test]
+    fn weights_rebuild_every_drawn_point() {
+        let p = zigzag();
+        for closed in [false, true] {
+            for m in [
+                Smoothing::Bezier,
+                Smoothing::BSpline,
+                Smoothing::CatmullRom,
+                Smoothing::Polyline,
+            ] {
+                let Ok(curve) = (if closed {
+                    Smoothed::closed(m, &p)
+                } else {
+                    Smoothed::open(m, &p)
+                }) else {
+                    continue;
+                };
+                let mut w = [0.0; 6];
+                for span in 0..curve.span_count() {
+                    for k in 0..=8 {
+                        let t = k as f64 / 8.0;
+                        curve.weights(span, t, &mut w);
+                        let rebuilt = p
+                            .iter()
+                            .zip(&w)
+                            .fold(Vec2::default(), |acc, (&pi, &wi)| acc + pi * wi);
+                        let drawn = curve.point(span, t);
+                        assert!(
+                            (rebuilt - drawn).length() < 1e-12,
+                            "{m:?} {closed} {span} {t}"
+                        );
+                        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -56,17 +56,23 @@ pub(crate) fn substeps_per_rate<S: Scalar>(integrator: &impl Integrator, accurac
 
 /// The substep count and length for a frame of `dt >= 0` seconds, given the system's `rate`
 /// (1/s) and [`substeps_per_rate`]: at most [`MAX_SUBSTEPS`], each at most
-/// `1 / (rate · per_rate)` long; the flag is `true` when the cap cut the frame short. A
+/// `1 / max(rate · per_rate, floor)` long (`floor`: substeps a second that contacts ask
+/// for); the flag is `true` when the cap cut the frame short. A
 /// zero `dt` is zero substeps.
 ///
 /// # Errors
 /// [`Error::TooStiff`] when `rate · per_rate` overflows the format (saturates in `Q16`) or
 /// the substep length rounds to zero.
-pub(crate) fn plan<S: Scalar>(dt: S, rate: S, per_rate: S) -> Result<(u16, S, bool), Error> {
+pub(crate) fn plan<S: Scalar>(
+    dt: S,
+    rate: S,
+    per_rate: S,
+    floor: S,
+) -> Result<(u16, S, bool), Error> {
     if dt == S::ZERO {
         return Ok((0, S::ZERO, false));
     }
-    let scale = rate * per_rate;
+    let scale = (rate * per_rate).max(floor);
     if !scale.is_finite() {
         return Err(Error::TooStiff);
     }

@@ -1,6 +1,7 @@
 //! The mass-spring system: particles and springs, stepped by an integrator in substeps, and
 //! a step that cannot explode.
 
+use crate::contact::Contacts;
 use crate::error::{check_index, check_non_negative, check_points};
 use crate::force::ForceField;
 use crate::integrator::{Integrator, Model, State, SymplecticEuler};
@@ -320,8 +321,22 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     fn plan(&self, dt: P::Scalar) -> Result<(u16, P::Scalar, bool), Error> {
+        self.plan_at_least(dt, P::Scalar::ZERO)
+    }
+
+    /// As [`plan`](Self::plan), with at least `floor` substeps a second.
+    fn plan_at_least(
+        &self,
+        dt: P::Scalar,
+        floor: P::Scalar,
+    ) -> Result<(u16, P::Scalar, bool), Error> {
         check_non_negative(dt)?;
-        plan(dt, self.spring_rate + self.settings.damping, self.per_rate)
+        plan(
+            dt,
+            self.spring_rate + self.settings.damping,
+            self.per_rate,
+            floor,
+        )
     }
 
     /// Advances by `dt` seconds with gravity, damping and springs only.
@@ -351,10 +366,74 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     pub fn step_with<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
-        mut forces: F,
+        forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let (n, h, slow_motion) = self.plan(dt)?;
-        let saturated = self.substeps_or_undo(n, h, &mut forces)?;
+        self.step_resolving(dt, forces, P::Scalar::ZERO, |_, _, _| {})
+    }
+
+    /// As [`step_with`](Self::step_with), resolving `contacts` at the particles after every
+    /// substep, with enough substeps that nothing tunnels (see [`contact`](crate::contact)).
+    /// A [`Touch::Curve`](crate::contact::Touch::Curve) is tested at the particles here;
+    /// [`Rope::step_touching`](crate::Rope::step_touching) tests the drawn curve.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// use dunas::collider::Collider;
+    /// use dunas::contact::{Contacts, Touch};
+    ///
+    /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), ..Settings::default() };
+    /// let material = Material { stiffness: 400.0, damping: 0.5 };
+    /// let mut rope: Rope<Vec2<f32>, 8> = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0), 1.0, material, settings)?;
+    /// let floor = [Collider::half_space(Vec2::new(0.0, -3.0), Vec2::new(0.0, 1.0))?];
+    /// let contacts = Contacts::new(&floor, 0.05, Touch::Particles)?;
+    /// for _ in 0..120 {
+    ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
+    /// }
+    /// assert!(rope.positions().iter().all(|p| p.y >= -3.0));
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`step_with`](Self::step_with).
+    pub fn step_touching<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let floor = contacts.rate(self.top_speed(dt));
+        self.step_resolving(dt, forces, floor, |state, inv_mass, lag| {
+            contacts.resolve_particles(
+                Sh::flat_mut(&mut state.pos),
+                Sh::flat_mut(&mut state.vel),
+                Sh::flat(inv_mass),
+                lag,
+            )
+        })
+    }
+
+    /// The fastest a free particle can go this frame: its speed now plus what gravity adds
+    /// over `dt`.
+    pub(crate) fn top_speed(&self, dt: P::Scalar) -> P::Scalar {
+        let fastest = self
+            .velocities()
+            .iter()
+            .map(|v| v.length())
+            .fold(P::Scalar::ZERO, P::Scalar::max);
+        fastest + self.settings.gravity.length() * dt
+    }
+
+    /// A step whose substeps each end with `resolve(state, inverse masses, time left in the
+    /// frame)`, with at least `floor` substeps a second.
+    pub(crate) fn step_resolving<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        mut forces: F,
+        floor: P::Scalar,
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, P::Scalar),
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
+        let saturated = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -380,7 +459,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h)? > P::Scalar::ZERO);
-        let saturated = self.substeps_or_undo(n, h, &mut forces)?;
+        let saturated = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
             simulated: h,
@@ -396,10 +475,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         n: u16,
         h: P::Scalar,
         forces: &mut F,
+        resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, P::Scalar),
     ) -> Result<bool, Error> {
         let saved = (self.state, self.time);
         let mut unsaturated = true;
-        for _ in 0..n {
+        for k in 1..=n {
             let model = Model {
                 inv_mass: &self.inv_mass,
                 topology: &self.topology,
@@ -412,6 +492,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 .integrator
                 .substep(&model, &mut self.state, h, forces);
             self.time += h;
+            resolve(
+                &mut self.state,
+                &self.inv_mass,
+                h * P::Scalar::from_i16((n - k) as i16),
+            );
         }
         if self.flush_and_check() {
             Ok(!unsaturated)

@@ -1,0 +1,533 @@
+//! Colliders: the solid things of a scene that ropes and sails touch.
+//!
+//! A [`Collider`] is a ball (a circle in 2D, a sphere in 3D), a capsule, a half-space (a
+//! half-plane in 2D, a plane's solid side in 3D), an axis-aligned box or, in 2D, a convex
+//! polygon of up to [`MAX_VERTICES`] corners. It is static, or kinematic: the game moves it
+//! between frames and gives it a velocity, so a bat or a platform pushes what it touches. Its
+//! surface has Coulomb friction (static and kinetic) and a restitution. The game owns its
+//! colliders, in a slice or an array; nothing is allocated.
+//!
+//! Every query is [`Collider::distance`]: the signed distance from the surface (negative
+//! inside) and the outward unit normal. Cost: a square root for a ball, capsule or box from
+//! outside, none for a half-space, one per edge for a polygon.
+//!
+//! ```
+//! use dunas::{Vec2, collider::Collider};
+//! let peg = Collider::ball(Vec2::new(0.0f32, 0.0), 1.0)?;
+//! let (d, n) = peg.distance(Vec2::new(3.0, 0.0));
+//! assert_eq!((d, n), (2.0, Vec2::new(1.0, 0.0)));
+//! assert!(Collider::ball(Vec2::new(0.0f32, 0.0), -1.0).is_err());
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::error::{check_non_negative, check_points};
+use crate::{Aabb, Error, Point, Scalar, Vec2};
+
+/// Most corners of a [`Collider::polygon`].
+pub const MAX_VERTICES: usize = 8;
+
+/// The solid shape of a collider.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Solid<P: Point> {
+    Ball {
+        center: P,
+        radius: P::Scalar,
+    },
+    Capsule {
+        a: P,
+        /// Unit direction from `a` to the other end.
+        dir: P,
+        length: P::Scalar,
+        radius: P::Scalar,
+    },
+    HalfSpace {
+        point: P,
+        normal: P,
+    },
+    Box(Aabb<P>),
+    /// Counter-clockwise corners and their edges' outward unit normals (2D only).
+    Polygon {
+        corners: [P; MAX_VERTICES],
+        normals: [P; MAX_VERTICES],
+        count: u8,
+    },
+}
+
+/// A solid shape with its motion and surface. Build it with [`ball`](Self::ball),
+/// [`capsule`](Self::capsule), [`half_space`](Self::half_space), [`aabb`](Self::aabb) or
+/// [`polygon`](Self::polygon); every constructor checks its input, so a built collider
+/// answers every query with finite values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collider<P: Point> {
+    solid: Solid<P>,
+    velocity: P,
+    static_friction: P::Scalar,
+    kinetic_friction: P::Scalar,
+    restitution: P::Scalar,
+}
+
+/// `v / |v|`, or `None` when `v` is too short to have a direction in the format.
+#[inline]
+pub(crate) fn unit<P: Point>(v: P) -> Option<P> {
+    let len = v.length();
+    (len > P::Scalar::EPSILON * P::Scalar::from_i16(16)).then(|| v * (P::Scalar::ONE / len))
+}
+
+/// The first axis, the normal used where a point sits exactly on a ball's centre.
+fn first_axis<P: Point>() -> P {
+    let mut up = P::default();
+    up.set_coord(1, P::Scalar::ONE);
+    up
+}
+
+/// Checks a radius: finite, not negative, inside the safe range.
+fn check_radius<S: Scalar>(r: S) -> Result<S, Error> {
+    check_non_negative(r)?;
+    if r > S::SAFE_RANGE {
+        return Err(Error::OutOfRange);
+    }
+    Ok(r)
+}
+
+impl<P: Point> Collider<P> {
+    fn new(solid: Solid<P>) -> Self {
+        Collider {
+            solid,
+            velocity: P::default(),
+            static_friction: P::Scalar::ZERO,
+            kinetic_friction: P::Scalar::ZERO,
+            restitution: P::Scalar::ZERO,
+        }
+    }
+
+    /// A ball: a circle in 2D, a sphere in 3D.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad centre;
+    /// [`Error::InvalidParameter`] for a negative or NaN radius, [`Error::OutOfRange`] for one
+    /// beyond [`Scalar::SAFE_RANGE`].
+    pub fn ball(center: P, radius: P::Scalar) -> Result<Self, Error> {
+        check_points(&[center])?;
+        let radius = check_radius(radius)?;
+        Ok(Self::new(Solid::Ball { center, radius }))
+    }
+
+    /// A capsule: the points within `radius` of the segment `a`–`b` (a ball when `a = b`).
+    ///
+    /// # Errors
+    /// As [`ball`](Self::ball), for both ends.
+    pub fn capsule(a: P, b: P, radius: P::Scalar) -> Result<Self, Error> {
+        check_points(&[a, b])?;
+        let radius = check_radius(radius)?;
+        let length = (b - a).length();
+        let dir = unit(b - a).unwrap_or_else(first_axis);
+        Ok(Self::new(Solid::Capsule {
+            a,
+            dir,
+            length,
+            radius,
+        }))
+    }
+
+    /// The solid side of the plane through `point` with outward normal `normal` (the side
+    /// the normal points away from): the ground, a wall.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad point or normal;
+    /// [`Error::InvalidParameter`] for a normal too short to have a direction.
+    pub fn half_space(point: P, normal: P) -> Result<Self, Error> {
+        check_points(&[point, normal])?;
+        let normal = unit(normal).ok_or(Error::InvalidParameter)?;
+        Ok(Self::new(Solid::HalfSpace { point, normal }))
+    }
+
+    /// An axis-aligned box from `min` to `max` (a crate, a platform).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad corner;
+    /// [`Error::InvalidParameter`] when a coordinate of `min` is above that of `max`.
+    pub fn aabb(min: P, max: P) -> Result<Self, Error> {
+        check_points(&[min, max])?;
+        if (0..P::DIM).any(|d| min.coord(d) > max.coord(d)) {
+            return Err(Error::InvalidParameter);
+        }
+        Ok(Self::new(Solid::Box(Aabb { min, max })))
+    }
+
+    /// The same collider moving at `velocity` (units per second): the speed at which the game
+    /// moves it. Contacts push with it and rub against it; [`advance`](Self::advance) moves it.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad velocity.
+    pub fn moving(mut self, velocity: P) -> Result<Self, Error> {
+        check_points(&[velocity])?;
+        self.velocity = velocity;
+        Ok(self)
+    }
+
+    /// The same collider with Coulomb friction coefficients: `static_friction` holds a
+    /// contact still while the tangential push stays within it times the normal push,
+    /// `kinetic_friction` brakes a sliding one. Both default to 0 (ice).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a negative or non-finite coefficient, or a kinetic one
+    /// above the static one.
+    pub fn with_friction(
+        mut self,
+        static_friction: P::Scalar,
+        kinetic_friction: P::Scalar,
+    ) -> Result<Self, Error> {
+        check_non_negative(static_friction)?;
+        check_non_negative(kinetic_friction)?;
+        if kinetic_friction > static_friction {
+            return Err(Error::InvalidParameter);
+        }
+        (self.static_friction, self.kinetic_friction) = (static_friction, kinetic_friction);
+        Ok(self)
+    }
+
+    /// The same collider with a restitution in `0..=1`: the share of the normal speed a hit
+    /// gives back (0, the default, stops it; 1 bounces it back at full speed).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] outside `0..=1` or NaN.
+    pub fn with_restitution(mut self, restitution: P::Scalar) -> Result<Self, Error> {
+        if !(restitution >= P::Scalar::ZERO && restitution <= P::Scalar::ONE) {
+            return Err(Error::InvalidParameter);
+        }
+        self.restitution = restitution;
+        Ok(self)
+    }
+
+    /// The velocity given by [`moving`](Self::moving).
+    #[inline]
+    pub fn velocity(&self) -> P {
+        self.velocity
+    }
+
+    /// `(static, kinetic)` friction coefficients.
+    #[inline]
+    pub fn friction(&self) -> (P::Scalar, P::Scalar) {
+        (self.static_friction, self.kinetic_friction)
+    }
+
+    /// The restitution.
+    #[inline]
+    pub fn restitution(&self) -> P::Scalar {
+        self.restitution
+    }
+
+    /// Moves the collider by `offset`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] when the offset or the moved shape leaves
+    /// the safe range; the collider is then unchanged.
+    pub fn translate(&mut self, offset: P) -> Result<(), Error> {
+        check_points(&[offset])?;
+        let mut moved = self.solid;
+        match &mut moved {
+            Solid::Ball { center: p, .. }
+            | Solid::Capsule { a: p, .. }
+            | Solid::HalfSpace { point: p, .. } => {
+                *p += offset;
+                check_points(&[*p])?;
+            }
+            Solid::Box(b) => {
+                (b.min, b.max) = (b.min + offset, b.max + offset);
+                check_points(&[b.min, b.max])?;
+            }
+            Solid::Polygon { corners, count, .. } => {
+                for c in &mut corners[..usize::from(*count)] {
+                    *c += offset;
+                }
+                check_points(&corners[..usize::from(*count)])?;
+            }
+        }
+        if let Solid::Capsule { a, dir, length, .. } = moved {
+            check_points(&[a + dir * length])?;
+        }
+        self.solid = moved;
+        Ok(())
+    }
+
+    /// Moves the collider by its velocity for `dt` seconds: call it once a frame for a
+    /// kinematic collider.
+    ///
+    /// # Errors
+    /// As [`translate`](Self::translate); [`Error::InvalidParameter`] for a negative or
+    /// non-finite `dt`.
+    pub fn advance(&mut self, dt: P::Scalar) -> Result<(), Error> {
+        check_non_negative(dt)?;
+        self.translate(self.velocity * dt)
+    }
+
+    /// Signed distance from `p` to the surface (negative inside) and the outward unit normal
+    /// at the nearest surface point. Total: finite for every finite `p` in the safe range.
+    pub fn distance(&self, p: P) -> (P::Scalar, P) {
+        let zero = P::Scalar::ZERO;
+        match &self.solid {
+            Solid::Ball { center, radius } => from_centre(p, *center, *radius),
+            Solid::Capsule {
+                a,
+                dir,
+                length,
+                radius,
+            } => {
+                let along = (p - *a).dot(*dir).max(zero).min(*length);
+                from_centre(p, *a + *dir * along, *radius)
+            }
+            Solid::HalfSpace { point, normal } => ((p - *point).dot(*normal), *normal),
+            Solid::Box(b) => box_distance(b, p),
+            Solid::Polygon {
+                corners,
+                normals,
+                count,
+            } => polygon_distance(
+                &corners[..usize::from(*count)],
+                &normals[..usize::from(*count)],
+                p,
+            ),
+        }
+    }
+
+    /// A box holding the solid (the half-space's is the whole safe range): the broad phase.
+    pub fn bounds(&self) -> Aabb<P> {
+        match &self.solid {
+            Solid::Ball { center, radius } => grown(Aabb::point(*center), *radius),
+            Solid::Capsule {
+                a,
+                dir,
+                length,
+                radius,
+            } => grown(Aabb::point(*a).including(*a + *dir * *length), *radius),
+            Solid::HalfSpace { .. } => Aabb {
+                min: P::splat(-P::Scalar::SAFE_RANGE),
+                max: P::splat(P::Scalar::SAFE_RANGE),
+            },
+            Solid::Box(b) => *b,
+            Solid::Polygon { corners, count, .. } => {
+                Aabb::from_points(&corners[..usize::from(*count)])
+                    .unwrap_or(Aabb::point(P::default()))
+            }
+        }
+    }
+}
+
+impl<S: Scalar> Collider<Vec2<S>> {
+    /// A convex polygon through 3 to [`MAX_VERTICES`] corners, in either winding.
+    ///
+    /// ```
+    /// use dunas::{Vec2, collider::Collider};
+    /// let ramp = Collider::polygon(&[Vec2::new(0.0f32, 0.0), Vec2::new(4.0, 0.0), Vec2::new(0.0, 2.0)])?;
+    /// assert!(ramp.distance(Vec2::new(1.0, 0.5)).0 < 0.0);
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad corner;
+    /// [`Error::CapacityExceeded`] past [`MAX_VERTICES`]; [`Error::InvalidParameter`] for fewer
+    /// than 3 corners, a zero-length edge, or corners that do not turn one way (non-convex,
+    /// or all on a line).
+    pub fn polygon(corners: &[Vec2<S>]) -> Result<Self, Error> {
+        check_points(corners)?;
+        let count = corners.len();
+        if count > MAX_VERTICES {
+            return Err(Error::CapacityExceeded {
+                capacity: MAX_VERTICES,
+            });
+        }
+        if count < 3 {
+            return Err(Error::InvalidParameter);
+        }
+        let edge = |i: usize| corners[(i + 1) % count] - corners[i % count];
+        // Convex: every turn has the sign of the first non-zero one; a line has none.
+        let turns = (0..count).map(|i| edge(i).cross(edge(i + 1)));
+        let (mut left, mut right) = (false, false);
+        for t in turns {
+            left |= t > S::ZERO;
+            right |= t < S::ZERO;
+        }
+        if left == right {
+            return Err(Error::InvalidParameter);
+        }
+        let mut ordered = [Vec2::default(); MAX_VERTICES];
+        for (i, o) in ordered.iter_mut().take(count).enumerate() {
+            *o = if left {
+                corners[i]
+            } else {
+                corners[count - 1 - i]
+            };
+        }
+        let mut normals = [Vec2::default(); MAX_VERTICES];
+        for i in 0..count {
+            let e = ordered[(i + 1) % count] - ordered[i];
+            normals[i] = unit(Vec2::new(e.y, -e.x)).ok_or(Error::InvalidParameter)?;
+        }
+        Ok(Self::new(Solid::Polygon {
+            corners: ordered,
+            normals,
+            count: count as u8,
+        }))
+    }
+}
+
+/// Signed distance from a ball of `radius` around `centre`.
+#[inline]
+fn from_centre<P: Point>(p: P, centre: P, radius: P::Scalar) -> (P::Scalar, P) {
+    let off = p - centre;
+    match unit(off) {
+        Some(n) => (off.length() - radius, n),
+        None => (-radius, first_axis()),
+    }
+}
+
+fn grown<P: Point>(b: Aabb<P>, r: P::Scalar) -> Aabb<P> {
+    Aabb {
+        min: b.min - P::splat(r),
+        max: b.max + P::splat(r),
+    }
+}
+
+fn box_distance<P: Point>(b: &Aabb<P>, p: P) -> (P::Scalar, P) {
+    let clamped = p.max_coords(b.min).min_coords(b.max);
+    if let Some(n) = unit(p - clamped) {
+        return ((p - clamped).length(), n);
+    }
+    // Inside (or on the surface): out through the nearest face.
+    let mut best = (P::Scalar::SAFE_RANGE, first_axis::<P>());
+    for d in 0..P::DIM {
+        for (gap, sign) in [
+            (p.coord(d) - b.min.coord(d), -P::Scalar::ONE),
+            (b.max.coord(d) - p.coord(d), P::Scalar::ONE),
+        ] {
+            if gap < best.0 {
+                let mut n = P::default();
+                n.set_coord(d, sign);
+                best = (gap, n);
+            }
+        }
+    }
+    (-best.0, best.1)
+}
+
+fn polygon_distance<P: Point>(corners: &[P], normals: &[P], p: P) -> (P::Scalar, P) {
+    let count = corners.len();
+    // Inside when every edge has `p` behind it: the least-deep edge is the way out.
+    let mut deepest = (-P::Scalar::SAFE_RANGE, first_axis::<P>());
+    for (c, n) in corners.iter().zip(normals) {
+        let s = (p - *c).dot(*n);
+        if s > deepest.0 {
+            deepest = (s, *n);
+        }
+    }
+    if deepest.0 <= P::Scalar::ZERO {
+        return deepest;
+    }
+    // Outside: the nearest point of the boundary.
+    let mut nearest = (P::Scalar::SAFE_RANGE, first_axis::<P>());
+    for i in 0..count {
+        let (a, b) = (corners[i], corners[(i + 1) % count]);
+        let edge = b - a;
+        let len = edge.length();
+        let q = match unit(edge) {
+            Some(dir) => a + dir * (p - a).dot(dir).max(P::Scalar::ZERO).min(len),
+            None => a,
+        };
+        let d = (p - q).length();
+        if d < nearest.0 {
+            nearest = (d, unit(p - q).unwrap_or(normals[i]));
+        }
+    }
+    nearest
+}
+
+#[cfg(all(test, dunas_floats))]
+mod tests {
+    use super::*;
+    use crate::Vec3;
+
+    #[test]
+    fn every_shape_measures_from_its_surface() {
+        let near = |(d, n): (f64, Vec2<f64>), (e, m): (f64, Vec2<f64>)| {
+            assert!(
+                (d - e).abs() < 1e-12 && (n - m).length() < 1e-12,
+                "{d} {n:?}"
+            );
+        };
+        let p = Vec2::new(3.0f64, 4.0);
+        let ball = Collider::ball(Vec2::new(0.0, 0.0), 1.0).unwrap();
+        near(ball.distance(p), (4.0, Vec2::new(0.6, 0.8)));
+        let capsule = Collider::capsule(Vec2::new(-5.0, 0.0), Vec2::new(5.0, 0.0), 1.0).unwrap();
+        near(capsule.distance(p), (3.0, Vec2::new(0.0, 1.0)));
+        let ground = Collider::half_space(Vec2::new(0.0, 1.0), Vec2::new(0.0, 2.0)).unwrap();
+        near(ground.distance(p), (3.0, Vec2::new(0.0, 1.0)));
+        let crate_ = Collider::aabb(Vec2::new(0.0, 0.0), Vec2::new(2.0, 1.0)).unwrap();
+        near(
+            crate_.distance(Vec2::new(1.0, 0.8)),
+            (-0.2, Vec2::new(0.0, 1.0)),
+        );
+        assert_eq!(crate_.distance(Vec2::new(5.0, 5.0)).0, 5.0);
+        // Clockwise corners are reordered: the same square either way.
+        let square = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 2.0),
+            Vec2::new(2.0, 2.0),
+            Vec2::new(2.0, 0.0),
+        ];
+        let poly = Collider::polygon(&square).unwrap();
+        near(
+            poly.distance(Vec2::new(1.0, 1.5)),
+            (-0.5, Vec2::new(0.0, 1.0)),
+        );
+        near(
+            poly.distance(Vec2::new(5.0, 6.0)),
+            (5.0, Vec2::new(0.6, 0.8)),
+        );
+        let sphere = Collider::ball(Vec3::new(0.0, 0.0, 0.0), 2.0).unwrap();
+        assert_eq!(sphere.distance(Vec3::new(0.0, 0.0, 5.0)).0, 3.0);
+    }
+
+    #[test]
+    fn bad_shapes_are_refused() {
+        let o = Vec2::new(0.0f32, 0.0);
+        assert_eq!(Collider::ball(o, f32::NAN), Err(Error::InvalidParameter));
+        assert_eq!(
+            Collider::ball(o, f32::INFINITY),
+            Err(Error::InvalidParameter)
+        );
+        assert_eq!(Collider::ball(o, -1.0), Err(Error::InvalidParameter));
+        assert_eq!(
+            Collider::ball(Vec2::new(f32::NAN, 0.0), 1.0),
+            Err(Error::NonFinite)
+        );
+        assert_eq!(Collider::ball(o, 1e30), Err(Error::OutOfRange));
+        assert_eq!(Collider::half_space(o, o), Err(Error::InvalidParameter));
+        assert_eq!(
+            Collider::aabb(Vec2::new(1.0, 0.0), o),
+            Err(Error::InvalidParameter)
+        );
+        let line = [o, Vec2::new(1.0, 0.0), Vec2::new(2.0, 0.0)];
+        assert_eq!(Collider::polygon(&line), Err(Error::InvalidParameter));
+        let dart = [
+            o,
+            Vec2::new(2.0, 1.0),
+            Vec2::new(0.0, 2.0),
+            Vec2::new(0.5, 1.0),
+        ];
+        assert_eq!(Collider::polygon(&dart), Err(Error::InvalidParameter));
+        assert_eq!(Collider::polygon(&line[..2]), Err(Error::InvalidParameter));
+        assert_eq!(
+            Collider::polygon(&[o; 9]),
+            Err(Error::CapacityExceeded { capacity: 8 })
+        );
+        let ball = Collider::ball(o, 1.0).unwrap();
+        assert_eq!(ball.with_friction(0.2, 0.5), Err(Error::InvalidParameter));
+        assert_eq!(ball.with_restitution(1.5), Err(Error::InvalidParameter));
+        let mut moved = ball;
+        assert_eq!(
+            moved.translate(Vec2::new(1e30, 0.0)),
+            Err(Error::OutOfRange)
+        );
+        assert_eq!(moved, ball);
+    }
+}
