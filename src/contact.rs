@@ -108,12 +108,12 @@ impl<'a, P: Point> Contacts<'a, P> {
         pos: &mut [P],
         vel: &mut [P],
         inv_mass: &[P::Scalar],
-        lag: P::Scalar,
+        (h, lag): (P::Scalar, P::Scalar),
     ) {
         for collider in self.colliders {
             for ((x, v), &w) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass) {
                 if w > P::Scalar::ZERO
-                    && let Some((dx, dv)) = self.response(collider, *x, *v, lag)
+                    && let Some((dx, dv)) = self.response(collider, *x, *v, (h, lag))
                 {
                     *x += dx;
                     *v += dv;
@@ -129,10 +129,10 @@ impl<'a, P: Point> Contacts<'a, P> {
         pos: &mut [P; K],
         vel: &mut [P; K],
         inv_mass: &[P::Scalar; K],
-        lag: P::Scalar,
+        (h, lag): (P::Scalar, P::Scalar),
     ) {
         let Touch::Curve(smoothing) = self.touch else {
-            return self.resolve_particles(pos, vel, inv_mass, lag);
+            return self.resolve_particles(pos, vel, inv_mass, (h, lag));
         };
         let mut weights = [P::Scalar::ZERO; K];
         for collider in self.colliders {
@@ -148,7 +148,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let x = curve.point(span, t);
                 curve.weights(span, t, &mut weights);
                 let v = point_of(vel, &weights);
-                let Some((dx, dv)) = self.response(collider, x, v, lag) else {
+                let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
                     continue;
                 };
                 let mut norm = P::Scalar::ZERO;
@@ -216,9 +216,17 @@ impl<'a, P: Point> Contacts<'a, P> {
         }
     }
 
-    /// The position and velocity change for a point at `x` moving at `v`, or `None` when it
-    /// is clear of `collider`.
-    fn response(&self, collider: &Collider<P>, x: P, v: P, lag: P::Scalar) -> Option<(P, P)> {
+    /// The position and velocity change for a point at `x` moving at `v` at the end of a
+    /// substep of `h`, or `None` when it is clear of `collider`. Friction also takes back the
+    /// sliding it stops from this substep's move (`brake · h`), so a sticking contact does
+    /// not creep.
+    fn response(
+        &self,
+        collider: &Collider<P>,
+        x: P,
+        v: P,
+        (h, lag): (P::Scalar, P::Scalar),
+    ) -> Option<(P, P)> {
         let zero = P::Scalar::ZERO;
         let (d, n) = collider.distance(x + collider.velocity() * lag);
         if d >= self.thickness || !d.is_finite() {
@@ -239,7 +247,7 @@ impl<'a, P: Point> Contacts<'a, P> {
         } else {
             slide * (kinetic * push / speed)
         };
-        Some((dx, n * push - brake))
+        Some((dx - brake * h, n * push - brake))
     }
 }
 

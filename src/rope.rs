@@ -225,8 +225,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let floor = contacts.rate(self.system.top_speed(dt));
         self.system
-            .step_resolving(dt, forces, floor, |state, inv_mass, lag| {
-                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, lag)
+            .step_resolving(dt, forces, floor, |state, inv_mass, times| {
+                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times)
             })
     }
 

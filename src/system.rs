@@ -402,12 +402,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let floor = contacts.rate(self.top_speed(dt));
-        self.step_resolving(dt, forces, floor, |state, inv_mass, lag| {
+        self.step_resolving(dt, forces, floor, |state, inv_mass, times| {
             contacts.resolve_particles(
                 Sh::flat_mut(&mut state.pos),
                 Sh::flat_mut(&mut state.vel),
                 Sh::flat(inv_mass),
-                lag,
+                times,
             )
         })
     }
@@ -423,14 +423,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         fastest + self.settings.gravity.length() * dt
     }
 
-    /// A step whose substeps each end with `resolve(state, inverse masses, time left in the
-    /// frame)`, with at least `floor` substeps a second.
+    /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
+    /// time left in the frame))`, with at least `floor` substeps a second.
     pub(crate) fn step_resolving<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         mut forces: F,
         floor: P::Scalar,
-        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, P::Scalar),
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
         let saturated = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
@@ -475,7 +475,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         n: u16,
         h: P::Scalar,
         forces: &mut F,
-        resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, P::Scalar),
+        resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<bool, Error> {
         let saved = (self.state, self.time);
         let mut unsaturated = true;
@@ -495,7 +495,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             resolve(
                 &mut self.state,
                 &self.inv_mass,
-                h * P::Scalar::from_i16((n - k) as i16),
+                (h, h * P::Scalar::from_i16((n - k) as i16)),
             );
         }
         if self.flush_and_check() {
