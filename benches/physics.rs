@@ -1,5 +1,6 @@
 //! Step cost of every integrator for ropes of 8 and 30 particles and cloths of 8×8 and
-//! 20×20, the cost of a whole rope frame (step + 64-point curve), and the state sizes.
+//! 20×20, the cost of a whole rope frame (step + 64-point curve), contacts against 4
+//! colliders, and the state sizes.
 //!
 //! Run: `cargo bench --bench physics`. The sizes are printed first.
 
@@ -149,6 +150,36 @@ fn frames(c: &mut Criterion) {
     g.finish();
 }
 
+/// A 60 Hz rope frame (substeps from stiffness) alone and with contacts against 4 colliders
+/// (ground, wall, two thin pegs), at the particles and on the drawn B-spline. Thickness 0, so
+/// the substep count is the same and the difference is what the contacts cost.
+fn contacts(c: &mut Criterion) {
+    use dunas::collider::Collider;
+    use dunas::contact::{Contacts, Touch};
+    let colliders = [
+        Collider::half_space(Vec2::new(0.0, -40.0), Vec2::new(0.0, 1.0)).unwrap(),
+        Collider::half_space(Vec2::new(75.0, 0.0), Vec2::new(-1.0, 0.0)).unwrap(),
+        Collider::ball(Vec2::new(20.0, -10.0), 1.0).unwrap(),
+        Collider::capsule(Vec2::new(40.0, -25.0), Vec2::new(50.0, -25.0), 1.0).unwrap(),
+    ];
+    let mut g = c.benchmark_group("contacts");
+    let r8 = rope::<8, 7>(AnyIntegrator::SymplecticEuler);
+    bench_on(&mut g, "rope8_step", &r8, |r| r.step(1.0 / 60.0).unwrap());
+    for (name, touch) in [
+        ("rope8_step_4_colliders_particles", Touch::Particles),
+        (
+            "rope8_step_4_colliders_curve",
+            Touch::Curve(Smoothing::BSpline),
+        ),
+    ] {
+        let contacts = Contacts::new(&colliders, 0.0, touch).unwrap();
+        bench_on(&mut g, name, &r8, |r| {
+            r.step_touching(1.0 / 60.0, (), &contacts).unwrap()
+        });
+    }
+    g.finish();
+}
+
 fn sizes(_: &mut Criterion) {
     use core::mem::size_of;
     println!(
@@ -175,6 +206,6 @@ criterion_group! {
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_millis(800))
         .sample_size(30);
-    targets = sizes, steps, frames
+    targets = sizes, steps, frames, contacts
 }
 criterion_main!(benches);

@@ -14,7 +14,8 @@
 //! - [`Touch::Particles`] tests the particles only: cheap (one distance per particle and
 //!   collider), and enough when colliders are wider than the particle spacing.
 //! - [`Touch::Curve`] tests the drawn curve: each span's control-point box first (the convex
-//!   hull property), then the deepest point of the span, found by 9 samples and 12 rounds
+//!   hull property) against the collider's box and its distance from the box's centre,
+//!   then the deepest point of the span, found by 9 samples and 12 rounds
 //!   of golden-section search around the deepest (to a bracket under 1/1000 of the span). The
 //!   correction `d` found at a point with particle weights `w` (see
 //!   [`Smoothed::weights`](crate::smooth::Smoothed::weights)) moves particle `i` by
@@ -140,8 +141,17 @@ impl<'a, P: Point> Contacts<'a, P> {
             let Ok(mut curve) = Smoothed::open(smoothing, pos) else {
                 return;
             };
+            let shift = collider.velocity() * lag;
             for span in 0..curve.span_count() {
-                if !curve.span_bounds(span).overlaps(&reach) {
+                let hull = curve.span_bounds(span);
+                if !hull.overlaps(&reach) {
+                    continue;
+                }
+                // The distance changes no faster than the point moves: every point of the
+                // box is at least d(centre) - half its diagonal from the collider.
+                let centre = hull.min.midpoint(hull.max);
+                let half_diagonal = (hull.max - centre).length();
+                if collider.distance(centre + shift).0 - half_diagonal >= self.thickness {
                     continue;
                 }
                 let t = self.deepest(&curve, span, collider, lag);
