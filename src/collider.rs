@@ -69,8 +69,16 @@ pub struct Collider<P: Point> {
 /// `v / |v|`, or `None` when `v` is too short to have a direction in the format.
 #[inline]
 pub(crate) fn unit<P: Point>(v: P) -> Option<P> {
+    length_and_unit(v).1
+}
+
+/// `|v|` and `v / |v|` from one square root (`None` as in [`unit`]).
+#[inline]
+fn length_and_unit<P: Point>(v: P) -> (P::Scalar, Option<P>) {
     let len = v.length();
-    (len > P::Scalar::EPSILON * P::Scalar::from_i16(16)).then(|| v * (P::Scalar::ONE / len))
+    let dir =
+        (len > P::Scalar::EPSILON * P::Scalar::from_i16(16)).then(|| v * (P::Scalar::ONE / len));
+    (len, dir)
 }
 
 /// The first axis, the normal used where a point sits exactly on a ball's centre.
@@ -104,8 +112,8 @@ impl<P: Point> Collider<P> {
     ///
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad centre;
-    /// [`Error::InvalidParameter`] for a negative or NaN radius, [`Error::OutOfRange`] for one
-    /// beyond [`Scalar::SAFE_RANGE`].
+    /// [`Error::InvalidParameter`] for a negative, NaN or infinite radius,
+    /// [`Error::OutOfRange`] for one beyond [`Scalar::SAFE_RANGE`].
     pub fn ball(center: P, radius: P::Scalar) -> Result<Self, Error> {
         check_points(&[center])?;
         let radius = check_radius(radius)?;
@@ -119,8 +127,8 @@ impl<P: Point> Collider<P> {
     pub fn capsule(a: P, b: P, radius: P::Scalar) -> Result<Self, Error> {
         check_points(&[a, b])?;
         let radius = check_radius(radius)?;
-        let length = (b - a).length();
-        let dir = unit(b - a).unwrap_or_else(first_axis);
+        let (length, dir) = length_and_unit(b - a);
+        let dir = dir.unwrap_or_else(first_axis);
         Ok(Self::new(Solid::Capsule {
             a,
             dir,
@@ -374,10 +382,9 @@ impl<S: Scalar> Collider<Vec2<S>> {
 /// Signed distance from a ball of `radius` around `centre`.
 #[inline]
 fn from_centre<P: Point>(p: P, centre: P, radius: P::Scalar) -> (P::Scalar, P) {
-    let off = p - centre;
-    match unit(off) {
-        Some(n) => (off.length() - radius, n),
-        None => (-radius, first_axis()),
+    match length_and_unit(p - centre) {
+        (len, Some(n)) => (len - radius, n),
+        (_, None) => (-radius, first_axis()),
     }
 }
 
@@ -390,8 +397,8 @@ fn grown<P: Point>(b: Aabb<P>, r: P::Scalar) -> Aabb<P> {
 
 fn box_distance<P: Point>(b: &Aabb<P>, p: P) -> (P::Scalar, P) {
     let clamped = p.max_coords(b.min).min_coords(b.max);
-    if let Some(n) = unit(p - clamped) {
-        return ((p - clamped).length(), n);
+    if let (len, Some(n)) = length_and_unit(p - clamped) {
+        return (len, n);
     }
     // Inside (or on the surface): out through the nearest face.
     let mut best = (P::Scalar::SAFE_RANGE, first_axis::<P>());
@@ -427,15 +434,13 @@ fn polygon_distance<P: Point>(corners: &[P], normals: &[P], p: P) -> (P::Scalar,
     let mut nearest = (P::Scalar::SAFE_RANGE, first_axis::<P>());
     for i in 0..count {
         let (a, b) = (corners[i], corners[(i + 1) % count]);
-        let edge = b - a;
-        let len = edge.length();
-        let q = match unit(edge) {
-            Some(dir) => a + dir * (p - a).dot(dir).max(P::Scalar::ZERO).min(len),
-            None => a,
+        let q = match length_and_unit(b - a) {
+            (len, Some(dir)) => a + dir * (p - a).dot(dir).max(P::Scalar::ZERO).min(len),
+            (_, None) => a,
         };
-        let d = (p - q).length();
+        let (d, dir) = length_and_unit(p - q);
         if d < nearest.0 {
-            nearest = (d, unit(p - q).unwrap_or(normals[i]));
+            nearest = (d, dir.unwrap_or(normals[i]));
         }
     }
     nearest

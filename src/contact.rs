@@ -27,8 +27,10 @@
 //! moves more than `r` against a collider in one substep, judged from the speeds at the start
 //! of the frame plus what gravity adds during it (Catmull-Rom's drawn points move up to 5/4 as
 //! fast as its particles, which the count allows for), within [`MAX_SUBSTEPS`]. A point that
-//! moves less than `r` a substep cannot cross a collider unseen. A thickness of 0 gives no
-//! such guarantee.
+//! moves less than `r` a substep cannot cross a collider unseen. Past the cap the frame still
+//! simulates its whole `dt` (contacts never slow time), and a point faster than
+//! `r · MAX_SUBSTEPS / dt` may cross a collider thinner than its step. A thickness of 0 gives
+//! no such guarantee.
 //!
 //! [`MAX_SUBSTEPS`]: crate::system::MAX_SUBSTEPS
 
@@ -136,11 +138,11 @@ impl<'a, P: Point> Contacts<'a, P> {
             return self.resolve_particles(pos, vel, inv_mass, (h, lag));
         };
         let mut weights = [P::Scalar::ZERO; K];
+        let Ok(mut curve) = Smoothed::open(smoothing, pos) else {
+            return;
+        };
         for collider in self.colliders {
             let reach = grown_by(collider.bounds(), collider.velocity() * lag, self.thickness);
-            let Ok(mut curve) = Smoothed::open(smoothing, pos) else {
-                return;
-            };
             let shift = collider.velocity() * lag;
             for span in 0..curve.span_count() {
                 let hull = curve.span_bounds(span);

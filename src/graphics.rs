@@ -70,11 +70,15 @@ fn thin_segment<D: DrawTarget>(
     (skip_start, skip_end): (bool, bool),
     color: D::Color,
 ) -> Result<(), D::Error> {
-    let pixels = Line::new(a, b).points();
-    let count = pixels.count();
-    let from = usize::from(skip_start);
-    let to = count.saturating_sub(usize::from(skip_end && count > usize::from(skip_start)));
-    target.draw_iter(pixels.take(to).skip(from).map(|p| ColoredPixel(p, color)))
+    let mut pixels = Line::new(a, b)
+        .points()
+        .skip(usize::from(skip_start))
+        .peekable();
+    target.draw_iter(core::iter::from_fn(move || {
+        let p = pixels.next()?;
+        let last = pixels.peek().is_none();
+        (!(skip_end && last)).then_some(ColoredPixel(p, color))
+    }))
 }
 
 /// Strokes the polyline through `pixels`. A 1-pixel stroke paints every pixel once where the

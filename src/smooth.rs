@@ -61,7 +61,6 @@ pub enum Smoothing {
 pub struct Smoothed<P, const K: usize> {
     pieces: Pieces<P, K>,
     method: Smoothing,
-    closed: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,11 +91,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(particles), K - 1),
             Smoothing::Polyline => Pieces::Straight(segments(particles), K - 1),
         };
-        Ok(Smoothed {
-            pieces,
-            method,
-            closed: false,
-        })
+        Ok(Smoothed { pieces, method })
     }
 
     /// The closed curve through a ring of particles (a loop topology): `K` spans, wrapping
@@ -151,11 +146,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
                 K,
             ),
         };
-        Ok(Smoothed {
-            pieces,
-            method,
-            closed: true,
-        })
+        Ok(Smoothed { pieces, method })
     }
 
     /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
@@ -261,11 +252,12 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             ],
         };
         // Local weights for particles span-1 ..= span+2; open ends reflect a phantom particle
-        // through the end one (2·p0 - p1), as the spans were built.
+        // through the end one (2·p0 - p1), as the spans were built. A closed curve has K spans.
+        let closed = self.span_count() == K;
         for (k, w) in local.into_iter().enumerate() {
             let i = span as isize + k as isize - 1;
             let last = K as isize - 1;
-            if self.closed {
+            if closed {
                 weights[i.rem_euclid(K as isize) as usize] += w;
             } else if i < 0 {
                 weights[0] += w + w;

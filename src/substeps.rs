@@ -56,9 +56,10 @@ pub(crate) fn substeps_per_rate<S: Scalar>(integrator: &impl Integrator, accurac
 
 /// The substep count and length for a frame of `dt >= 0` seconds, given the system's `rate`
 /// (1/s) and [`substeps_per_rate`]: at most [`MAX_SUBSTEPS`], each at most
-/// `1 / max(rate · per_rate, floor)` long (`floor`: substeps a second that contacts ask
-/// for); the flag is `true` when the cap cut the frame short. A
-/// zero `dt` is zero substeps.
+/// `1 / (rate · per_rate)` long; the flag is `true` when that cap cut the frame short (slow
+/// motion, which keeps a stiff system stable). `floor` is the substeps a second that contacts
+/// ask for: it raises the count up to [`MAX_SUBSTEPS`] but never slows time. A zero `dt` is
+/// zero substeps.
 ///
 /// # Errors
 /// [`Error::TooStiff`] when `rate · per_rate` overflows the format (saturates in `Q16`) or
@@ -72,17 +73,24 @@ pub(crate) fn plan<S: Scalar>(
     if dt == S::ZERO {
         return Ok((0, S::ZERO, false));
     }
-    let scale = (rate * per_rate).max(floor);
+    let scale = rate * per_rate;
     if !scale.is_finite() {
         return Err(Error::TooStiff);
     }
-    if scale <= S::ZERO {
-        return Ok((1, dt, false));
-    }
-    let (n, h, capped) = match (dt * scale).ceil_usize(MAX_SUBSTEPS as usize + 1).max(1) {
-        1 => (1, dt, false),
-        n if n > MAX_SUBSTEPS as usize => (MAX_SUBSTEPS, S::ONE / scale, true),
-        n => (n as u16, dt / S::from_i16(n as i16), false),
+    let stiff = if scale <= S::ZERO {
+        1
+    } else {
+        (dt * scale).ceil_usize(MAX_SUBSTEPS as usize + 1).max(1)
+    };
+    let (n, h, capped) = if stiff > MAX_SUBSTEPS as usize {
+        (MAX_SUBSTEPS, S::ONE / scale, true)
+    } else {
+        // A NaN or saturated contact demand counts as the cap.
+        let contact = (dt * floor).ceil_usize(MAX_SUBSTEPS as usize);
+        match stiff.max(contact) {
+            0 | 1 => (1, dt, false),
+            n => (n as u16, dt / S::from_i16(n as i16), false),
+        }
     };
     if h > S::ZERO && h.is_finite() {
         Ok((n, h, capped))

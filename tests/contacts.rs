@@ -176,3 +176,36 @@ fn bad_contacts_are_refused() {
         assert!(Contacts::new(&peg, bad, Touch::Particles).is_err(), "{bad}");
     }
 }
+
+/// Contacts raise the substeps up to the cap and never slow time: a thickness so small that
+/// no substep count could keep up still steps the whole frame (it used to be `TooStiff`).
+#[test]
+fn contacts_never_slow_time() {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.8),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: 100.0,
+        damping: 0.1,
+    };
+    let mut rope: Rope<Vec2<f32>, 8> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(7.0, 0.0),
+        1.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    rope.apply_impulse(7, Vec2::new(0.0, -5.0)).unwrap();
+    let ground = [Collider::half_space(Vec2::new(0.0, -100.0), Vec2::new(0.0, 1.0)).unwrap()];
+    for thickness in [1e-30, 0.5] {
+        let contacts = Contacts::new(&ground, thickness, Touch::Particles).unwrap();
+        let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+        assert_eq!(info.simulated, 1.0 / 60.0, "{thickness}");
+        assert!(!info.slow_motion, "{thickness}");
+    }
+    let contacts = Contacts::new(&ground, 1e-30, Touch::Particles).unwrap();
+    let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+    assert_eq!(info.substeps, dunas::system::MAX_SUBSTEPS);
+}
