@@ -169,7 +169,7 @@ fn contacts(c: &mut Criterion) {
         ("rope8_step_4_colliders_particles", Touch::Particles),
         (
             "rope8_step_4_colliders_curve",
-            Touch::Curve(Smoothing::BSpline),
+            Touch::Drawn(Smoothing::BSpline),
         ),
     ] {
         let contacts = Contacts::new(&colliders, 0.0, touch).unwrap();

@@ -3,11 +3,14 @@
 
 use core::ops::{Deref, DerefMut};
 
+use crate::contact::Contacts;
 use crate::error::check_positive;
+use crate::force::ForceField;
 use crate::integrator::{Integrator, SymplecticEuler};
 use crate::shape::Grid;
 use crate::spring::{GridSprings, Material};
 use crate::system::MassSpring;
+use crate::system::StepInfo;
 use crate::{Error, Patch, Point, Scalar, Settings, Vec3};
 
 /// A `U × V` cloth: a sail, a flag, a cape. The springs are implied by the grid
@@ -105,6 +108,48 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
             self.system.set_inv_mass(j * U + i, P::Scalar::ZERO)?;
         }
         Ok(())
+    }
+
+    /// Advances by `dt` seconds with `forces`, resolving `contacts` after every substep: on
+    /// the drawn surface for [`Touch::Drawn`](crate::contact::Touch::Drawn) (with
+    /// [`Smoothing::Bezier`](crate::Smoothing::Bezier), the [`patch`](Self::patch) the cloth
+    /// is drawn with), which catches a pole thinner than the particle spacing, or at the
+    /// particles. See [`contact`](crate::contact) for the response, its cost and the
+    /// tunnelling bound.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// use dunas::collider::Collider;
+    /// use dunas::contact::{Contacts, Touch};
+    ///
+    /// let settings = Settings { gravity: Vec3::new(0.0, -9.8, 0.0), damping: 0.5, ..Settings::default() };
+    /// let m = Material { stiffness: 300.0, damping: 0.2 };
+    /// let mut sheet: Cloth<Vec3<f32>, 6, 6> = Cloth::rectangle(
+    ///     Vec3::new(-1.0, 1.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0),
+    ///     1.0, [m, m, m], settings,
+    /// )?;
+    /// let ball = [Collider::ball(Vec3::new(0.0, 0.0, 0.0), 0.6)?];
+    /// let contacts = Contacts::new(&ball, 0.02, Touch::Drawn(Smoothing::Bezier))?;
+    /// for _ in 0..60 {
+    ///     sheet.step_touching(1.0 / 60.0, (), &contacts)?;
+    /// }
+    /// let centre = sheet.patch()?.eval(0.5, 0.5);
+    /// assert!(centre.length() > 0.6); // the sheet lies on the ball, not through it
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`MassSpring::step_with`].
+    pub fn step_touching<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        self.system
+            .step_contacts(dt, forces, contacts, true, |state, inv_mass, times| {
+                contacts.resolve_surface(&mut state.pos, &mut state.vel, inv_mass, times)
+            })
     }
 
     /// The particles as a Bézier patch, ready to sample.

@@ -1,43 +1,55 @@
 //! Contacts: ropes and sails pushed out of colliders, with restitution and Coulomb friction,
-//! at their particles or on the curve the game draws.
+//! at their particles or on the curve or surface the game draws.
 //!
-//! [`Contacts`] names the colliders, the rope's thickness (its radius) and where to test
-//! ([`Touch`]). Stepping with it ([`MassSpring::step_touching`](crate::MassSpring::step_touching),
-//! [`Rope::step_touching`](crate::Rope::step_touching)) resolves the contacts after every
-//! substep, whatever the integrator: a point closer to a collider than the thickness is moved
-//! out along the collider's normal, and its velocity relative to the collider loses its
+//! [`Contacts`] names the colliders, the thickness (radius) of the rope or cloth, and where to
+//! test ([`Touch`]). Stepping with it ([`Rope::step_touching`](crate::Rope::step_touching),
+//! [`Cloth::step_touching`](crate::Cloth::step_touching),
+//! [`MassSpring::step_touching`](crate::MassSpring::step_touching)) resolves the contacts after
+//! every substep, whatever the integrator: a point closer to a collider than the thickness is
+//! moved out along the collider's normal, and its velocity relative to the collider loses its
 //! inward part (times `1 + restitution`) and, by Coulomb's law, its sliding part: all of it
 //! while that stays within static friction times the normal change, else kinetic friction
-//! times it. Every integrator keeps positions and velocities, so the same projection and
-//! impulse serve them all.
+//! times it. Every integrator keeps positions and velocities (Verlet's and XPBD's velocities
+//! are what the next substep's positions are built from), so the same projection plus impulse
+//! serves them all.
 //!
 //! - [`Touch::Particles`] tests the particles only: cheap (one distance per particle and
-//!   collider), and enough when colliders are wider than the particle spacing.
-//! - [`Touch::Curve`] tests the drawn curve: each span's control-point box first (the convex
-//!   hull property) against the collider's box and its distance from the box's centre,
-//!   then the deepest point of the span, found by 9 samples and 12 rounds
-//!   of golden-section search around the deepest (to a bracket under 1/1000 of the span). The
-//!   correction `d` found at a point with particle weights `w` (see
-//!   [`Smoothed::weights`](crate::smooth::Smoothed::weights)) moves particle `i` by
-//!   `(w_i / m_i) · d / Σ_j w_j² / m_j`: the smallest mass-weighted change that moves the drawn
-//!   point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and restitution
-//!   go the same way. This catches pegs far thinner than the particle spacing.
+//!   collider), and enough when every collider is wider than the particle spacing.
+//! - [`Touch::Drawn`] tests what the game draws. A rope's curve: each span's control-point
+//!   box first (the convex hull property) against the collider's box and its distance from
+//!   the box's centre, then the deepest point of the span, found by 9 samples and 12 rounds of
+//!   golden-section search around the deepest (to a bracket under 1/1000 of the span). A
+//!   cloth's surface: each cell between four neighbouring particles, its supporting
+//!   particles' box grown by the basis's overshoot (Catmull-Rom: 25/16), then the deepest
+//!   point of the cell by 3×3 samples and 8 halving rounds of a compass search (to 1/1000 of
+//!   the cell). The correction `d` found at a point with particle weights `w` (see
+//!   [`Smoothed::weights`](crate::smooth::Smoothed::weights); a product of the two
+//!   directions' weights on a surface) moves particle `i` by `(w_i / m_i) · d / Σ_j w_j² / m_j`:
+//!   the smallest mass-weighted change that moves the drawn point by exactly `d` (with equal
+//!   masses, `w_i · d / Σ w_j²`). Friction and restitution go the same way. This catches pegs
+//!   and poles far thinner than the particle spacing, at 2-5× the cost of particle contacts.
+//!
+//! **Two-way coupling.** [`Contacts::with_impulses`] reports, after each step, the impulse
+//! the rope or cloth gave each collider: add it, divided by the body's mass, to the velocity
+//! of the ball, crate or bat the collider stands for.
 //!
 //! **No tunnelling.** With a thickness `r > 0`, a step takes enough substeps that no particle
 //! moves more than `r` against a collider in one substep, judged from the speeds at the start
 //! of the frame plus what gravity adds during it (Catmull-Rom's drawn points move up to 5/4 as
-//! fast as its particles, which the count allows for), within [`MAX_SUBSTEPS`]. A point that
-//! moves less than `r` a substep cannot cross a collider unseen. Past the cap the frame still
-//! simulates its whole `dt` (contacts never slow time), and a point faster than
-//! `r · MAX_SUBSTEPS / dt` may cross a collider thinner than its step. A thickness of 0 gives
-//! no such guarantee.
+//! fast as its particles on a curve, 25/16 on a surface, which the count allows for), within
+//! [`MAX_SUBSTEPS`]. A point that moves less than `r` a substep cannot cross a collider
+//! unseen. Past the cap the frame still simulates its whole `dt` (contacts never slow time),
+//! and a point faster than `r · MAX_SUBSTEPS / dt` may cross a collider thinner than its
+//! step. A thickness of 0 gives no such guarantee.
 //!
 //! [`MAX_SUBSTEPS`]: crate::system::MAX_SUBSTEPS
+
+use core::cell::Cell;
 
 use crate::collider::Collider;
 use crate::error::check_non_negative;
 use crate::smooth::{Smoothed, Smoothing};
-use crate::{Error, Point, Scalar};
+use crate::{Aabb, Error, Point, Scalar};
 
 /// Where contacts are tested.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -45,9 +57,10 @@ pub enum Touch {
     /// At the particles only.
     #[default]
     Particles,
-    /// On the curve this smoothing draws through the particles (ropes); other systems test
-    /// their particles.
-    Curve(Smoothing),
+    /// On what this smoothing draws through the particles: a rope's curve, or a cloth's
+    /// surface (the smoothing along both grid directions; [`Smoothing::Bezier`] is the
+    /// cloth's [`patch`](crate::Cloth::patch)). Other systems test their particles.
+    Drawn(Smoothing),
 }
 
 /// The colliders a step resolves contacts against, the thickness of what touches them, and
@@ -57,6 +70,7 @@ pub struct Contacts<'a, P: Point> {
     colliders: &'a [Collider<P>],
     thickness: P::Scalar,
     touch: Touch,
+    impulses: &'a [Cell<P>],
 }
 
 impl<'a, P: Point> Contacts<'a, P> {
@@ -77,7 +91,56 @@ impl<'a, P: Point> Contacts<'a, P> {
             colliders,
             thickness,
             touch,
+            impulses: &[],
         })
+    }
+
+    /// Reports impulses: after each step, `impulses[k]` holds the impulse (mass × velocity, in
+    /// the system's units) that the step's contacts gave collider `k`, the opposite of what
+    /// they gave the rope or cloth. Divided by a body's mass, it is the velocity change the
+    /// body gets back. A step sets every entry (zero for a collider it did not touch, and all
+    /// zero when it returns an error); entries past the last collider are left alone, and
+    /// colliders past the last entry are not reported.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// use dunas::collider::Collider;
+    /// use dunas::contact::{Contacts, Touch};
+    ///
+    /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), ..Settings::default() };
+    /// let material = Material { stiffness: 400.0, damping: 0.5 };
+    /// let mut rope: Rope<Vec2<f32>, 8> = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0), 1.0, material, settings)?;
+    /// let (mut ball, mut velocity, mass) = (Vec2::new(3.5, 1.0), Vec2::new(0.0, -4.0), 0.5);
+    /// let mut impulses = [Vec2::default(); 1];
+    /// for _ in 0..30 {
+    ///     ball += velocity * (1.0 / 60.0); // where the ball will be at the end of the frame
+    ///     let colliders = [Collider::ball(ball, 0.3)?.moving(velocity)?];
+    ///     let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))?
+    ///         .with_impulses(&mut impulses);
+    ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
+    ///     velocity += impulses[0] * (1.0 / mass) + Vec2::new(0.0, -9.8) * (1.0 / 60.0);
+    /// }
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    pub fn with_impulses(self, impulses: &'a mut [P]) -> Self {
+        Contacts {
+            impulses: Cell::from_mut(impulses).as_slice_of_cells(),
+            ..self
+        }
+    }
+
+    /// Sets every reported impulse to zero (at the start of a step, and after a refused one).
+    pub(crate) fn clear_impulses(&self) {
+        for cell in self.impulses.iter().take(self.colliders.len()) {
+            cell.set(P::default());
+        }
+    }
+
+    /// Adds the momentum `given` to a rope or cloth by collider `k` to its report.
+    fn report(&self, k: usize, given: P) {
+        if let Some(cell) = self.impulses.get(k) {
+            cell.set(cell.get() - given);
+        }
     }
 
     /// Where the contacts are tested.
@@ -87,8 +150,9 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 
     /// Substeps per second that keep every point within the thickness of its previous place
-    /// against every collider, for speeds up to `speed` (0 when the thickness is 0).
-    pub(crate) fn rate(&self, speed: P::Scalar) -> P::Scalar {
+    /// against every collider, for particle speeds up to `speed` (0 when the thickness is 0);
+    /// `surface` when the drawn points are a surface's.
+    pub(crate) fn rate(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
         if self.thickness <= P::Scalar::ZERO {
             return P::Scalar::ZERO;
         }
@@ -97,8 +161,9 @@ impl<'a, P: Point> Contacts<'a, P> {
             .iter()
             .map(|c| c.velocity().length())
             .fold(P::Scalar::ZERO, P::Scalar::max);
-        let reach = match self.touch {
-            Touch::Curve(Smoothing::CatmullRom) => speed + speed * P::Scalar::ratio(1, 4),
+        let reach = match (self.touch, surface) {
+            (Touch::Drawn(Smoothing::CatmullRom), false) => speed * P::Scalar::ratio(5, 4),
+            (Touch::Drawn(Smoothing::CatmullRom), true) => speed * P::Scalar::ratio(25, 16),
             _ => speed,
         };
         (reach + collider) / self.thickness
@@ -113,13 +178,14 @@ impl<'a, P: Point> Contacts<'a, P> {
         inv_mass: &[P::Scalar],
         (h, lag): (P::Scalar, P::Scalar),
     ) {
-        for collider in self.colliders {
+        for (k, collider) in self.colliders.iter().enumerate() {
             for ((x, v), &w) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass) {
                 if w > P::Scalar::ZERO
                     && let Some((dx, dv)) = self.response(collider, *x, *v, (h, lag))
                 {
                     *x += dx;
                     *v += dv;
+                    self.report(k, dv * (P::Scalar::ONE / w));
                 }
             }
         }
@@ -134,47 +200,30 @@ impl<'a, P: Point> Contacts<'a, P> {
         inv_mass: &[P::Scalar; K],
         (h, lag): (P::Scalar, P::Scalar),
     ) {
-        let Touch::Curve(smoothing) = self.touch else {
+        let Touch::Drawn(smoothing) = self.touch else {
             return self.resolve_particles(pos, vel, inv_mass, (h, lag));
         };
         let mut weights = [P::Scalar::ZERO; K];
         let Ok(mut curve) = Smoothed::open(smoothing, pos) else {
             return;
         };
-        for collider in self.colliders {
-            let reach = grown_by(collider.bounds(), collider.velocity() * lag, self.thickness);
+        for (k, collider) in self.colliders.iter().enumerate() {
             let shift = collider.velocity() * lag;
+            let reach = grown_by(collider.bounds(), shift, self.thickness);
             for span in 0..curve.span_count() {
                 let hull = curve.span_bounds(span);
-                if !hull.overlaps(&reach) {
-                    continue;
-                }
-                // The distance changes no faster than the point moves: every point of the
-                // box is at least d(centre) - half its diagonal from the collider.
-                let centre = hull.min.midpoint(hull.max);
-                let half_diagonal = (hull.max - centre).length();
-                if collider.distance(centre + shift).0 - half_diagonal >= self.thickness {
+                if !hull.overlaps(&reach) || self.clear_of(collider, hull, shift) {
                     continue;
                 }
                 let t = self.deepest(&curve, span, collider, lag);
                 let x = curve.point(span, t);
                 curve.weights(span, t, &mut weights);
-                let v = point_of(vel, &weights);
+                let v = point_of(vel, |i| weights[i]);
                 let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
                     continue;
                 };
-                let mut norm = P::Scalar::ZERO;
-                for (&w, &m) in weights.iter().zip(inv_mass) {
-                    norm += w * w * m;
-                }
-                if norm <= P::Scalar::ZERO {
-                    continue; // every particle that moves this point is pinned
-                }
-                let share = P::Scalar::ONE / norm;
-                for i in 0..K {
-                    let k = weights[i] * inv_mass[i] * share;
-                    pos[i] += dx * k;
-                    vel[i] += dv * k;
+                if let Some(given) = spread(pos, vel, inv_mass, |i| weights[i], (dx, dv)) {
+                    self.report(k, given);
                 }
                 match Smoothed::open(smoothing, pos) {
                     Ok(c) => curve = c,
@@ -182,6 +231,72 @@ impl<'a, P: Point> Contacts<'a, P> {
                 }
             }
         }
+    }
+
+    /// Pushes the drawn surface of a grid of particles (row `j` is `pos[j]`) out of every
+    /// collider (see the module docs); particle contacts when [`Touch::Particles`].
+    pub(crate) fn resolve_surface<const U: usize, const V: usize>(
+        &self,
+        pos: &mut [[P; U]; V],
+        vel: &mut [[P; U]; V],
+        inv_mass: &[[P::Scalar; U]; V],
+        (h, lag): (P::Scalar, P::Scalar),
+    ) {
+        let (pos, vel, inv_mass) = (
+            pos.as_flattened_mut(),
+            vel.as_flattened_mut(),
+            inv_mass.as_flattened(),
+        );
+        let Touch::Drawn(smoothing) = self.touch else {
+            return self.resolve_particles(pos, vel, inv_mass, (h, lag));
+        };
+        let overshoot = match smoothing {
+            Smoothing::CatmullRom => P::Scalar::ratio(25, 16),
+            _ => P::Scalar::ONE,
+        };
+        let mut grid = Grid::<P::Scalar, U, V> {
+            smoothing,
+            wu: [P::Scalar::ZERO; U],
+            wv: [P::Scalar::ZERO; V],
+        };
+        for (k, collider) in self.colliders.iter().enumerate() {
+            let shift = collider.velocity() * lag;
+            let reach = grown_by(collider.bounds(), shift, self.thickness);
+            for cell in 0..(U - 1) * (V - 1) {
+                let (cu, cv) = (cell % (U - 1), cell / (U - 1));
+                let Some(hull) = grid.cell_bounds(pos, (cu, cv), overshoot) else {
+                    continue;
+                };
+                if !hull.overlaps(&reach) || self.clear_of(collider, hull, shift) {
+                    continue;
+                }
+                let Some((u, v)) = deepest_in_cell(self.thickness, |u, v| {
+                    grid.at((cu, cv), (u, v));
+                    let x = grid.point(pos) + shift;
+                    (x, collider.distance(x).0)
+                }) else {
+                    continue;
+                };
+                grid.at((cu, cv), (u, v));
+                let (x, v) = (grid.point(pos), grid.point(vel));
+                let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
+                    continue;
+                };
+                let w = |i: usize| grid.wu[i % U] * grid.wv[i / U];
+                if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
+                    self.report(k, given);
+                }
+            }
+        }
+    }
+
+    /// Whether every point of `hull` is at least the thickness from `collider` moved by
+    /// `shift`: the distance changes no faster than the point moves, so every point of the
+    /// box is at least d(centre) - half its diagonal away.
+    fn clear_of(&self, collider: &Collider<P>, hull: Aabb<P>, shift: P) -> bool {
+        let centre = hull.min.midpoint(hull.max);
+        let half_diagonal = (hull.max - centre).length();
+        collider.distance(centre + shift).0 - half_diagonal >= self.thickness
     }
 
     /// The parameter of span `span` deepest into `collider`: the best of 9 samples, then
@@ -263,17 +378,172 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 }
 
-/// `Σ w_i · p_i`.
-fn point_of<P: Point>(points: &[P], weights: &[P::Scalar]) -> P {
+/// `Σ w(i) · p_i`.
+fn point_of<P: Point>(points: &[P], w: impl Fn(usize) -> P::Scalar) -> P {
     points
         .iter()
-        .zip(weights)
-        .fold(P::default(), |acc, (&p, &w)| acc + p * w)
+        .enumerate()
+        .fold(P::default(), |acc, (i, &p)| acc + p * w(i))
+}
+
+/// Moves the particles so that the drawn point with particle weights `w` moves by `dx` and
+/// its velocity changes by `dv`: the smallest change in the inverse-mass metric. Returns the
+/// momentum the particles gained, or `None` when every particle that moves the point is
+/// pinned.
+fn spread<P: Point>(
+    pos: &mut [P],
+    vel: &mut [P],
+    inv_mass: &[P::Scalar],
+    w: impl Fn(usize) -> P::Scalar,
+    (dx, dv): (P, P),
+) -> Option<P> {
+    let zero = P::Scalar::ZERO;
+    let (mut norm, mut sum) = (zero, zero);
+    for (i, &m) in inv_mass.iter().enumerate() {
+        if m > zero {
+            let wi = w(i);
+            norm += wi * wi * m;
+            sum += wi;
+        }
+    }
+    if norm <= zero {
+        return None;
+    }
+    let share = P::Scalar::ONE / norm;
+    for (i, ((x, v), &m)) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass).enumerate() {
+        let k = w(i) * m * share;
+        *x += dx * k;
+        *v += dv * k;
+    }
+    Some(dv * (sum * share))
+}
+
+/// A point of the surface that a smoothing draws through a `U × V` grid: its two directions'
+/// particle weights.
+struct Grid<S, const U: usize, const V: usize> {
+    smoothing: Smoothing,
+    wu: [S; U],
+    wv: [S; V],
+}
+
+impl<S: Scalar, const U: usize, const V: usize> Grid<S, U, V> {
+    /// Moves to `(u, v)` in `[0, 1]²` of cell `(cu, cv)`, the cell between particles
+    /// `(cu, cv)` and `(cu + 1, cv + 1)`.
+    fn at(&mut self, (cu, cv): (usize, usize), (u, v): (S, S)) {
+        let (su, tu) = locate(self.smoothing, cu, u, U);
+        let (sv, tv) = locate(self.smoothing, cv, v, V);
+        self.smoothing.weights(false, su, tu, &mut self.wu);
+        self.smoothing.weights(false, sv, tv, &mut self.wv);
+    }
+
+    /// `Σ wu_i wv_j · points[j·U + i]`.
+    fn point<P: Point<Scalar = S>>(&self, points: &[P]) -> P {
+        let mut sum = P::default();
+        for (row, &wv) in points.chunks_exact(U).zip(&self.wv) {
+            if wv != S::ZERO {
+                sum += point_of(row, |i| self.wu[i]) * wv;
+            }
+        }
+        sum
+    }
+
+    /// A box that holds cell `(cu, cv)` of the surface: its supporting particles' box (every
+    /// particle for one Bézier), grown about its centre by `overshoot`, the most `Σ|w|` of
+    /// the basis reaches. `None` only for an empty grid.
+    fn cell_bounds<P: Point<Scalar = S>>(
+        &self,
+        points: &[P],
+        (cu, cv): (usize, usize),
+        overshoot: S,
+    ) -> Option<Aabb<P>> {
+        let support = |c: usize, n: usize| match self.smoothing {
+            Smoothing::Bezier => 0..n,
+            _ => c.saturating_sub(1)..(c + 3).min(n),
+        };
+        let mut hull: Option<Aabb<P>> = None;
+        for j in support(cv, V) {
+            for &p in &points[j * U..][support(cu, U)] {
+                hull = Some(hull.map_or(Aabb::point(p), |b| b.including(p)));
+            }
+        }
+        let hull = hull?;
+        let centre = hull.min.midpoint(hull.max);
+        let half = (hull.max - centre) * overshoot;
+        Some(Aabb {
+            min: centre - half,
+            max: centre + half,
+        })
+    }
+}
+
+/// Span and parameter along one grid direction of `n` particles for cell `cell` at `t`: one
+/// Bézier spans the whole direction, the other smoothings have a span per cell.
+fn locate<S: Scalar>(smoothing: Smoothing, cell: usize, t: S, n: usize) -> (usize, S) {
+    match smoothing {
+        Smoothing::Bezier => (
+            0,
+            (S::from_i16(cell as i16) + t) * S::ratio(1, (n - 1) as u32),
+        ),
+        _ => (cell, t),
+    }
+}
+
+/// The `(u, v)` in `[0, 1]²` of a cell where `depth` (a point and its distance to the
+/// collider) is least: the best of 3×3 samples, then 8 rounds of a compass search whose step
+/// halves from 1/4 (to 1/1000 of the cell). `None`, without the search, when the best sample
+/// is farther than `thickness` plus the longest distance between neighbouring samples: every
+/// point of a cell lies that close to a sample unless the cell folds between them.
+fn deepest_in_cell<P: Point>(
+    thickness: P::Scalar,
+    mut depth: impl FnMut(P::Scalar, P::Scalar) -> (P, P::Scalar),
+) -> Option<(P::Scalar, P::Scalar)> {
+    let (zero, half) = (P::Scalar::ZERO, P::Scalar::ratio(1, 2));
+    let mut samples = [(P::default(), zero); 9];
+    let at = |k: usize| {
+        (
+            P::Scalar::ratio(k as u32 % 3, 2),
+            P::Scalar::ratio(k as u32 / 3, 2),
+        )
+    };
+    for (k, sample) in samples.iter_mut().enumerate() {
+        *sample = depth(at(k).0, at(k).1);
+    }
+    let (mut best, mut spacing) = ((zero, zero, samples[0].1), zero);
+    for (k, &(x, d)) in samples.iter().enumerate() {
+        if d < best.2 {
+            best = (at(k).0, at(k).1, d);
+        }
+        // The neighbours to the right (same row) and above.
+        for next in [k + 1, k + 3] {
+            if next < 9 && (next == k + 3 || k % 3 < 2) {
+                spacing = spacing.max((samples[next].0 - x).length());
+            }
+        }
+    }
+    if best.2 >= thickness + spacing {
+        return None;
+    }
+    let mut step = P::Scalar::ratio(1, 4);
+    for _ in 0..8 {
+        let (u, v, _) = best;
+        for (du, dv) in [(step, zero), (-step, zero), (zero, step), (zero, -step)] {
+            let (nu, nv) = (
+                crate::curve::clamp_unit(u + du),
+                crate::curve::clamp_unit(v + dv),
+            );
+            let d = depth(nu, nv).1;
+            if d < best.2 {
+                best = (nu, nv, d);
+            }
+        }
+        step = step * half;
+    }
+    Some((best.0, best.1))
 }
 
 /// `b` moved back by `behind` and grown by `r` on every side.
-fn grown_by<P: Point>(b: crate::Aabb<P>, behind: P, r: P::Scalar) -> crate::Aabb<P> {
-    crate::Aabb {
+fn grown_by<P: Point>(b: Aabb<P>, behind: P, r: P::Scalar) -> Aabb<P> {
+    Aabb {
         min: b.min - behind - P::splat(r),
         max: b.max - behind + P::splat(r),
     }

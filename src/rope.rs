@@ -188,7 +188,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     }
 
     /// Advances by `dt` seconds with `forces`, resolving `contacts` after every substep: on
-    /// the drawn curve for [`Touch::Curve`](crate::contact::Touch::Curve), which catches a peg
+    /// the drawn curve for [`Touch::Drawn`](crate::contact::Touch::Drawn), which catches a peg
     /// thinner than the particle spacing, or at the particles. See [`contact`](crate::contact)
     /// for the response, its cost and the tunnelling bound.
     ///
@@ -203,7 +203,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     ///     Rope::new(Vec2::new(-3.5, 0.0), Vec2::new(3.5, 0.0), 1.0, material, settings)?;
     /// rope.set_inv_mass(7, 0.0)?; // both ends held
     /// let peg = [Collider::ball(Vec2::new(0.2, -0.5), 0.05)?]; // a tenth of the spacing
-    /// let contacts = Contacts::new(&peg, 0.02, Touch::Curve(Smoothing::BSpline))?;
+    /// let contacts = Contacts::new(&peg, 0.02, Touch::Drawn(Smoothing::BSpline))?;
     /// for _ in 0..240 {
     ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
     /// }
@@ -223,9 +223,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let floor = contacts.rate(self.system.top_speed(dt));
         self.system
-            .step_resolving(dt, forces, floor, |state, inv_mass, times| {
+            .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
                 contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times)
             })
     }

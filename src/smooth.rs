@@ -53,6 +53,70 @@ pub enum Smoothing {
     Polyline,
 }
 
+impl Smoothing {
+    /// The particle weights of span `span` at `t` of the open (or `closed`) curve of `K`
+    /// particles: see [`Smoothed::weights`]. Depends on the basis only, not on the particles.
+    pub(crate) fn weights<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        span: usize,
+        t: S,
+        weights: &mut [S; K],
+    ) {
+        let t = crate::curve::clamp_unit(t);
+        let zero = S::ZERO;
+        *weights = [zero; K];
+        let spans = match (self, closed) {
+            (Smoothing::Bezier, _) => 1,
+            (_, true) => K,
+            (_, false) => K - 1,
+        };
+        let span = span.min(spans.saturating_sub(1));
+        let (t2, sixth, half) = (t * t, S::ratio(1, 6), S::ratio(1, 2));
+        let t3 = t2 * t;
+        let n = |k: i16| S::from_i16(k);
+        let local = match self {
+            Smoothing::Bezier => {
+                crate::sampler::bernstein_weights(t, weights);
+                return;
+            }
+            Smoothing::Polyline => [zero, S::ONE - t, t, zero],
+            Smoothing::BSpline => {
+                let s = S::ONE - t;
+                [
+                    s * s * s * sixth,
+                    (n(3) * t3 - n(6) * t2 + n(4)) * sixth,
+                    (n(-3) * t3 + n(3) * t2 + n(3) * t + S::ONE) * sixth,
+                    t3 * sixth,
+                ]
+            }
+            Smoothing::CatmullRom => [
+                (-t3 + n(2) * t2 - t) * half,
+                (n(3) * t3 - n(5) * t2 + n(2)) * half,
+                (n(-3) * t3 + n(4) * t2 + t) * half,
+                (t3 - t2) * half,
+            ],
+        };
+        // Local weights for particles span-1 ..= span+2; open ends reflect a phantom particle
+        // through the end one (2·p0 - p1), as the spans were built.
+        for (k, w) in local.into_iter().enumerate() {
+            let i = span as isize + k as isize - 1;
+            let last = K as isize - 1;
+            if closed {
+                weights[i.rem_euclid(K as isize) as usize] += w;
+            } else if i < 0 {
+                weights[0] += w + w;
+                weights[1] -= w;
+            } else if i > last {
+                weights[K - 1] += w + w;
+                weights[K - 2] -= w;
+            } else {
+                weights[i as usize] += w;
+            }
+        }
+    }
+}
+
 /// The curve a [`Smoothing`] makes of `K` particles, ready to sample or measure.
 ///
 /// Built in `O(K)` from checked particles; sampling and measuring then cannot fail on the
@@ -222,53 +286,8 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     /// (down to -1/16, with `Σ|w| <= 5/4`). A force or a correction at that point reaches the
     /// particles through these weights.
     pub fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
-        let t = crate::curve::clamp_unit(t);
-        let zero = P::Scalar::ZERO;
-        *weights = [zero; K];
-        let span = span.min(self.span_count() - 1);
-        let (t2, sixth, half) = (t * t, P::Scalar::ratio(1, 6), P::Scalar::ratio(1, 2));
-        let t3 = t2 * t;
-        let n = |k: i16| P::Scalar::from_i16(k);
-        let local = match self.method {
-            Smoothing::Bezier => {
-                crate::sampler::bernstein_weights(t, weights);
-                return;
-            }
-            Smoothing::Polyline => [zero, P::Scalar::ONE - t, t, zero],
-            Smoothing::BSpline => {
-                let s = P::Scalar::ONE - t;
-                [
-                    s * s * s * sixth,
-                    (n(3) * t3 - n(6) * t2 + n(4)) * sixth,
-                    (n(-3) * t3 + n(3) * t2 + n(3) * t + P::Scalar::ONE) * sixth,
-                    t3 * sixth,
-                ]
-            }
-            Smoothing::CatmullRom => [
-                (-t3 + n(2) * t2 - t) * half,
-                (n(3) * t3 - n(5) * t2 + n(2)) * half,
-                (n(-3) * t3 + n(4) * t2 + t) * half,
-                (t3 - t2) * half,
-            ],
-        };
-        // Local weights for particles span-1 ..= span+2; open ends reflect a phantom particle
-        // through the end one (2·p0 - p1), as the spans were built. A closed curve has K spans.
         let closed = self.span_count() == K;
-        for (k, w) in local.into_iter().enumerate() {
-            let i = span as isize + k as isize - 1;
-            let last = K as isize - 1;
-            if closed {
-                weights[i.rem_euclid(K as isize) as usize] += w;
-            } else if i < 0 {
-                weights[0] += w + w;
-                weights[1] -= w;
-            } else if i > last {
-                weights[K - 1] += w + w;
-                weights[K - 2] -= w;
-            } else {
-                weights[i as usize] += w;
-            }
-        }
+        self.method.weights(closed, span, t, weights);
     }
 
     /// Length of the curve within `accuracy` (see [`Bezier::arclen`]), shared between the

@@ -373,7 +373,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
 
     /// As [`step_with`](Self::step_with), resolving `contacts` at the particles after every
     /// substep, with enough substeps that nothing tunnels (see [`contact`](crate::contact)).
-    /// A [`Touch::Curve`](crate::contact::Touch::Curve) is tested at the particles here;
+    /// A [`Touch::Drawn`](crate::contact::Touch::Drawn) is tested at the particles here;
     /// [`Rope::step_touching`](crate::Rope::step_touching) tests the drawn curve.
     ///
     /// ```
@@ -401,8 +401,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let floor = contacts.rate(self.top_speed(dt));
-        self.step_resolving(dt, forces, floor, |state, inv_mass, times| {
+        self.step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
             contacts.resolve_particles(
                 Sh::flat_mut(&mut state.pos),
                 Sh::flat_mut(&mut state.vel),
@@ -410,6 +409,26 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 times,
             )
         })
+    }
+
+    /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the
+    /// substeps the contacts ask for (`surface`: the drawn points are a surface's), reporting
+    /// impulses when `contacts` asks for them.
+    pub(crate) fn step_contacts<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+        surface: bool,
+        resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let floor = contacts.rate(self.top_speed(dt), surface);
+        contacts.clear_impulses();
+        let info = self.step_resolving(dt, forces, floor, resolve);
+        if info.is_err() {
+            contacts.clear_impulses();
+        }
+        info
     }
 
     /// The fastest a free particle can go this frame: its speed now plus what gravity adds

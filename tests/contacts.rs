@@ -1,5 +1,6 @@
 //! Contacts against references nobody tuned: a peg thinner than the particle spacing, Coulomb
-//! friction on a slope, and a restitution that adds no energy.
+//! friction on a slope, a ball bounced by a rope (momentum conserved), a cloth on a sphere,
+//! and a restitution that adds no energy.
 #![cfg(any(feature = "std", feature = "libm"))]
 
 use dunas::collider::Collider;
@@ -58,7 +59,7 @@ fn penetration(curve: &[Vec2<f64>], centre: Vec2<f64>, radius: f64) -> f64 {
 fn a_thin_peg_holds_the_drawn_rope_only_with_curve_contacts() {
     let spacing = 1.0;
     let radius = 0.1 * spacing;
-    let (curve, centre) = draped(radius, Touch::Curve(Smoothing::BSpline));
+    let (curve, centre) = draped(radius, Touch::Drawn(Smoothing::BSpline));
     let deep = penetration(&curve, centre, radius);
     eprintln!("curve contacts: deepest {deep:.2e} for a peg of radius {radius:.3}");
     assert!(deep <= 0.01 * radius, "{deep}");
@@ -135,7 +136,7 @@ fn a_rope_on_a_slope_sticks_below_atan_mu_and_slides_above() {
 /// than when it was let go.
 #[test]
 fn restitution_zero_adds_no_energy() {
-    for touch in [Touch::Particles, Touch::Curve(Smoothing::CatmullRom)] {
+    for touch in [Touch::Particles, Touch::Drawn(Smoothing::CatmullRom)] {
         let settings = Settings {
             gravity: Vec2::new(0.0, -9.8),
             ..Settings::default()
@@ -166,6 +167,156 @@ fn restitution_zero_adds_no_energy() {
             assert!(rope.energy() <= e0 + 1e-9 * e0.abs(), "{touch:?}");
         }
     }
+}
+
+/// A ball and the rope it falls on, coupled both ways through the reported impulses: each
+/// frame the ball moves at its velocity (a kinematic collider), the rope steps, and the ball
+/// takes back the impulse the rope gave it. Returns the ball's heights and velocities, and
+/// the total momentum of the ball and the free particles each frame.
+fn ball_on_rope(
+    gravity: f64,
+    pinned: bool,
+    frames: usize,
+) -> (Vec<Vec2<f64>>, Vec<Vec2<f64>>, Vec<Vec2<f64>>) {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -gravity),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: 4000.0,
+        damping: 1.0,
+    };
+    let mut rope: Rope<Vec2<f64>, 8> = Rope::new(
+        Vec2::new(-3.5, 0.0),
+        Vec2::new(3.5, 0.0),
+        1.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    if pinned {
+        // Taut: the ends held 10% wider than the rope's length.
+        rope.set_inv_mass(7, 0.0).unwrap();
+        rope.set_position(0, Vec2::new(-3.85, 0.0)).unwrap();
+        rope.set_position(7, Vec2::new(3.85, 0.0)).unwrap();
+    } else {
+        rope.set_inv_mass(0, 8.0 / 0.5).unwrap();
+    }
+    let (radius, mass) = (0.2, 2.0); // a fifth of the particle spacing, twice the rope's mass
+    let (mut ball, mut velocity) = (Vec2::new(0.3, 1.5), Vec2::new(0.0, -3.0));
+    let dt = 1.0 / 60.0;
+    let mut impulses = [Vec2::default(); 1];
+    let (mut heights, mut velocities, mut momenta) = (vec![], vec![], vec![]);
+    for _ in 0..frames {
+        ball += velocity * dt;
+        let colliders = [Collider::ball(ball, radius)
+            .unwrap()
+            .moving(velocity)
+            .unwrap()];
+        let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))
+            .unwrap()
+            .with_impulses(&mut impulses);
+        rope.step_touching(dt, (), &contacts).unwrap();
+        velocity += impulses[0] * (1.0 / mass) + Vec2::new(0.0, -gravity * dt);
+        let rope_momentum = rope
+            .velocities()
+            .iter()
+            .zip(rope.inv_masses())
+            .filter(|(_, w)| **w > 0.0)
+            .fold(Vec2::default(), |acc, (v, w)| acc + *v * (1.0 / w));
+        heights.push(ball);
+        velocities.push(velocity);
+        momenta.push(rope_momentum + velocity * mass);
+    }
+    (heights, velocities, momenta)
+}
+
+/// (c) A ball dropped on a taut horizontal rope, five times thinner than the particle
+/// spacing: the drawn rope stops it (it never gets through the rope's line) and throws it
+/// back up, with no more energy than it brought (restitution 0, no bounce higher than the
+/// drop).
+#[test]
+fn a_ball_dropped_on_a_taut_rope_is_stopped_and_bounced_back_up() {
+    let (positions, velocities, _) = ball_on_rope(9.8, true, 150);
+    let lowest = positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    let turned = velocities
+        .iter()
+        .position(|v| v.y > 0.0)
+        .expect("never stopped");
+    let rebound = positions[turned..]
+        .iter()
+        .map(|p| p.y)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // Falling from 1.5 m at 3 m/s: the drop's energy would carry it to 1.5 + 3²/2g.
+    let top = 1.5 + 9.0 / (2.0 * 9.8);
+    eprintln!("ball: lowest {lowest:.3} m, turned at frame {turned}, rebound to {rebound:.3} m");
+    assert!(lowest > -1.0, "the rope let the ball through: {lowest}");
+    assert!(rebound > lowest + 0.3, "no bounce: {rebound} from {lowest}");
+    assert!(rebound < top, "the bounce added energy: {rebound}");
+}
+
+/// Two-way coupling conserves momentum: with nothing pinned and no gravity, the ball and
+/// the rope it strikes keep their total momentum (springs are internal forces, and the ball
+/// takes back exactly what the contacts give the rope).
+#[test]
+fn a_ball_and_a_free_rope_keep_their_momentum() {
+    let (_, velocities, momenta) = ball_on_rope(0.0, false, 90);
+    let before = Vec2::new(0.0, -3.0) * 2.0;
+    assert!(velocities.last().unwrap().y > -2.9, "the ball never hit");
+    for m in momenta {
+        assert!((m - before).length() < 1e-9, "{m:?} vs {before:?}");
+    }
+}
+
+/// (d) A cloth dropped on a sphere: with surface contacts on the drawn patch no sample of the
+/// drawn surface is inside the sphere by more than 1% of its radius (plus the thickness).
+#[test]
+fn a_cloth_draped_over_a_sphere_stays_outside_it() {
+    let drape = |touch| {
+        let settings = Settings {
+            gravity: Vec3::new(0.0, -9.8, 0.0),
+            damping: 1.0,
+            ..Settings::default()
+        };
+        let m = Material {
+            stiffness: 400.0,
+            damping: 0.5,
+        };
+        let mut sheet: Cloth<Vec3<f64>, 8, 8> = Cloth::rectangle(
+            Vec3::new(-1.0, 0.6, -1.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 2.0),
+            1.0,
+            [m, m, m],
+            settings,
+        )
+        .unwrap();
+        let ball = [Collider::ball(Vec3::new(0.0, 0.0, 0.0), 0.5).unwrap()];
+        let contacts = Contacts::new(&ball, 0.0, touch).unwrap();
+        for _ in 0..180 {
+            sheet.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+        }
+        let mut samples = vec![Vec3::default(); 33 * 33];
+        sheet
+            .patch()
+            .unwrap()
+            .sample_grid(33, 33, &mut samples)
+            .unwrap();
+        let deepest = samples
+            .iter()
+            .map(|p| 0.5 - p.length())
+            .fold(f64::NEG_INFINITY, f64::max);
+        let top = sheet.patch().unwrap().eval(0.5, 0.5).y;
+        (deepest, top)
+    };
+    let (particles, _) = drape(Touch::Particles);
+    let (deepest, top) = drape(Touch::Drawn(Smoothing::Bezier));
+    eprintln!(
+        "drawn patch inside the sphere: {deepest:.4} m (particle contacts: {particles:.4} m)"
+    );
+    assert!(deepest <= 0.01 * 0.5, "{deepest}");
+    // It rests on the sphere: its middle is on the top, not fallen off or floating.
+    assert!((top - 0.5).abs() < 0.02, "{top}");
 }
 
 /// Bad input is an error, never a panic.
