@@ -171,13 +171,9 @@ fn restitution_zero_adds_no_energy() {
 
 /// A ball and the rope it falls on, coupled both ways through the reported impulses: each
 /// frame the ball moves at its velocity (a kinematic collider), the rope steps, and the ball
-/// takes back the impulse the rope gave it. Returns the ball's heights and velocities, and
-/// the total momentum of the ball and the free particles each frame.
-fn ball_on_rope(
-    gravity: f64,
-    pinned: bool,
-    frames: usize,
-) -> (Vec<Vec2<f64>>, Vec<Vec2<f64>>, Vec<Vec2<f64>>) {
+/// takes back the impulse the rope gave it. Returns, each frame, the ball's position and
+/// velocity and the total momentum of the ball and the free particles.
+fn ball_on_rope(gravity: f64, pinned: bool, frames: usize) -> Vec<[Vec2<f64>; 3]> {
     let settings = Settings {
         gravity: Vec2::new(0.0, -gravity),
         ..Settings::default()
@@ -206,7 +202,7 @@ fn ball_on_rope(
     let (mut ball, mut velocity) = (Vec2::new(0.3, 1.5), Vec2::new(0.0, -3.0));
     let dt = 1.0 / 60.0;
     let mut impulses = [Vec2::default(); 1];
-    let (mut heights, mut velocities, mut momenta) = (vec![], vec![], vec![]);
+    let mut frames_out = vec![];
     for _ in 0..frames {
         ball += velocity * dt;
         let colliders = [Collider::ball(ball, radius)
@@ -224,11 +220,9 @@ fn ball_on_rope(
             .zip(rope.inv_masses())
             .filter(|(_, w)| **w > 0.0)
             .fold(Vec2::default(), |acc, (v, w)| acc + *v * (1.0 / w));
-        heights.push(ball);
-        velocities.push(velocity);
-        momenta.push(rope_momentum + velocity * mass);
+        frames_out.push([ball, velocity, rope_momentum + velocity * mass]);
     }
-    (heights, velocities, momenta)
+    frames_out
 }
 
 /// (c) A ball dropped on a taut horizontal rope, five times thinner than the particle
@@ -237,15 +231,15 @@ fn ball_on_rope(
 /// drop).
 #[test]
 fn a_ball_dropped_on_a_taut_rope_is_stopped_and_bounced_back_up() {
-    let (positions, velocities, _) = ball_on_rope(9.8, true, 150);
-    let lowest = positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
-    let turned = velocities
+    let frames = ball_on_rope(9.8, true, 150);
+    let lowest = frames.iter().map(|f| f[0].y).fold(f64::INFINITY, f64::min);
+    let turned = frames
         .iter()
-        .position(|v| v.y > 0.0)
+        .position(|f| f[1].y > 0.0)
         .expect("never stopped");
-    let rebound = positions[turned..]
+    let rebound = frames[turned..]
         .iter()
-        .map(|p| p.y)
+        .map(|f| f[0].y)
         .fold(f64::NEG_INFINITY, f64::max);
     // Falling from 1.5 m at 3 m/s: the drop's energy would carry it to 1.5 + 3²/2g.
     let top = 1.5 + 9.0 / (2.0 * 9.8);
@@ -260,10 +254,10 @@ fn a_ball_dropped_on_a_taut_rope_is_stopped_and_bounced_back_up() {
 /// takes back exactly what the contacts give the rope).
 #[test]
 fn a_ball_and_a_free_rope_keep_their_momentum() {
-    let (_, velocities, momenta) = ball_on_rope(0.0, false, 90);
+    let frames = ball_on_rope(0.0, false, 90);
     let before = Vec2::new(0.0, -3.0) * 2.0;
-    assert!(velocities.last().unwrap().y > -2.9, "the ball never hit");
-    for m in momenta {
+    assert!(frames.last().unwrap()[1].y > -2.9, "the ball never hit");
+    for [_, _, m] in frames {
         assert!((m - before).length() < 1e-9, "{m:?} vs {before:?}");
     }
 }
