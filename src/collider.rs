@@ -298,6 +298,64 @@ impl<P: Point> Collider<P> {
         }
     }
 
+    /// The signed distance of [`distance`](Self::distance) without the normal: a square root
+    /// at most and no division for a ball, a capsule or a half-space (what a search for the
+    /// deepest point calls many times).
+    pub fn gap(&self, p: P) -> P::Scalar {
+        match &self.solid {
+            Solid::Ball { center, radius } => (p - *center).length() - *radius,
+            Solid::Capsule {
+                a,
+                dir,
+                length,
+                radius,
+            } => {
+                let along = (p - *a).dot(*dir).max(P::Scalar::ZERO).min(*length);
+                (p - (*a + *dir * along)).length() - *radius
+            }
+            Solid::HalfSpace { point, normal } => (p - *point).dot(*normal),
+            Solid::Box(_) | Solid::Polygon { .. } => self.distance(p).0,
+        }
+    }
+
+    /// A number that orders points near the solid as [`gap`](Self::gap) does, with no square
+    /// root: the squared distance to a ball's centre or a capsule's axis, times `scale²`, else
+    /// the gap. `scale` (from [`key_scale`](Self::key_scale)) keeps the square inside `Q16`.
+    pub(crate) fn search_key(&self, p: P, scale: P::Scalar) -> P::Scalar {
+        let off = match &self.solid {
+            Solid::Ball { center, .. } => p - *center,
+            Solid::Capsule { a, dir, length, .. } => {
+                let along = (p - *a).dot(*dir).max(P::Scalar::ZERO).min(*length);
+                p - (*a + *dir * along)
+            }
+            _ => return self.gap(p),
+        };
+        let off = if scale == P::Scalar::ONE {
+            off
+        } else {
+            off * scale
+        };
+        off.dot(off)
+    }
+
+    /// The scale for [`search_key`](Self::search_key) over points whose gap is at most
+    /// `gap`: 1 in floats; in fixed point a power of two that keeps the scaled distance to
+    /// the centre or axis under 128, so that its square does not saturate.
+    pub(crate) fn key_scale(&self, gap: P::Scalar) -> P::Scalar {
+        let radius = match &self.solid {
+            Solid::Ball { radius, .. } | Solid::Capsule { radius, .. } => *radius,
+            _ => return P::Scalar::ONE,
+        };
+        let (mut reach, mut scale) = (gap.max(P::Scalar::ZERO) + radius, P::Scalar::ONE);
+        if P::Scalar::FIXED_POINT {
+            let (limit, half) = (P::Scalar::from_i16(128), P::Scalar::ratio(1, 2));
+            while reach >= limit {
+                (reach, scale) = (reach * half, scale * half);
+            }
+        }
+        scale
+    }
+
     /// A box holding the solid (the half-space's is the whole safe range): the broad phase.
     pub fn bounds(&self) -> Aabb<P> {
         match &self.solid {

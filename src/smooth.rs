@@ -270,6 +270,16 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         }
     }
 
+    /// The parameter of span `span` whose point has the least `key`: see
+    /// [`Bezier::deepest`](crate::Bezier). Halving only (no multiplication in `Q16`).
+    pub(crate) fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.deepest(key),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].deepest(key),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].deepest(key),
+        }
+    }
+
     /// The box of span `span`'s control points, which holds the span (convex hull property).
     pub fn span_bounds(&self, span: usize) -> Aabb<P> {
         let points: &[P] = match &self.pieces {
