@@ -1,6 +1,7 @@
 //! Sails as PPM images: an 8×8 sail drawn through its Bézier patch beside a 20×20 sail drawn
-//! raw, in wireframe and shaded (Lambert with the patch normals), and a fleet of 12 sails in
-//! one image with the frame time printed.
+//! raw, in wireframe and shaded (Lambert with the patch normals), both filling against a thin
+//! stay (the 8×8 touches it with its drawn surface, the 20×20 with its particles), and a fleet
+//! of 12 sails in one image with the frame time printed.
 //!
 //! Run: `cargo run --release --example cloth -- OUT_DIR [--size WxH] [--frames N]`
 //! (defaults 640x360 and 6 frames, a quarter second apart). Writes `sail_wire_NNN.ppm`,
@@ -12,10 +13,12 @@ mod raster;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dunas::Settings;
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
 use dunas::force::Wind;
 use dunas::spring::Material;
 use dunas::{Cloth, Vec3};
+use dunas::{Settings, Smoothing};
 use raster::{Camera, Image, lambert};
 
 const STEP: f32 = 1.0 / 60.0;
@@ -24,6 +27,18 @@ const STEPS_PER_FRAME: usize = 15;
 const DRAWN: usize = 24;
 const MAST: [f32; 3] = [0.35, 0.3, 0.25];
 const CANVAS: [f32; 3] = [235.0, 225.0, 200.0];
+/// A stay downwind of the sail, 5 cm thick (a tenth of the 8×8 sail's particle spacing):
+/// the sail fills against it.
+const STAY: ([f32; 3], [f32; 3], f32) = ([1.6, 0.5, 1.0], [1.6, -4.5, 1.0], 0.05);
+
+fn stay() -> [Collider<Vec3<f32>>; 1] {
+    let (a, b, r) = STAY;
+    [
+        Collider::capsule(Vec3::new(a[0], a[1], a[2]), Vec3::new(b[0], b[1], b[2]), r)
+            .and_then(|c| c.with_friction(0.3, 0.2))
+            .expect("a valid stay"),
+    ]
+}
 
 struct Args {
     out: PathBuf,
@@ -176,15 +191,20 @@ fn draw_grid(
             img.line([a[0], a[1]], [b[0], b[1]], w);
         }
     }
-    // The mast.
-    let (top, foot) = (cam.project([0.0, 0.5, 0.0]), cam.project([0.0, -4.5, 0.0]));
+    // The mast, and the stay.
     let m = MAST.map(|c| (c * 255.0) as u8);
-    for dx in -1..=1 {
-        img.line(
-            [top[0] + dx as f32, top[1]],
-            [foot[0] + dx as f32, foot[1]],
-            m,
-        );
+    for ((top, foot), width) in [
+        (([0.0, 0.5, 0.0], [0.0, -4.5, 0.0]), 1),
+        ((STAY.0, STAY.1), 0),
+    ] {
+        let (top, foot) = (cam.project(top), cam.project(foot));
+        for dx in -width..=width {
+            img.line(
+                [top[0] + dx as f32, top[1]],
+                [foot[0] + dx as f32, foot[1]],
+                m,
+            );
+        }
     }
 }
 
@@ -215,6 +235,9 @@ fn main() {
     let (w, h) = (args.width, args.height);
     let (mut small, mut small_wind) = sail::<8, 8>(5.0);
     let (mut big, mut big_wind) = sail::<20, 20>(5.0);
+    let stay = stay();
+    let on_surface = Contacts::new(&stay, 0.01, Touch::Drawn(Smoothing::Bezier)).expect("valid");
+    let on_particles = Contacts::new(&stay, 0.01, Touch::Particles).expect("valid");
     let mut fleet: Vec<_> = (0..12)
         .map(|k| sail::<8, 8>(3.0 + 0.4 * k as f32))
         .collect();
@@ -241,14 +264,14 @@ fn main() {
         for _ in 0..STEPS_PER_FRAME {
             let t = Instant::now();
             small
-                .step_with(STEP, &mut small_wind)
+                .step_touching(STEP, &mut small_wind, &on_surface)
                 .expect("the sail stays stable");
             small
                 .sample(DRAWN, DRAWN, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             t_small += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            big.step_with(STEP, &mut big_wind)
+            big.step_touching(STEP, &mut big_wind, &on_particles)
                 .expect("the sail stays stable");
             t_big += t.elapsed().as_secs_f64();
         }

@@ -3,41 +3,19 @@
 //! and a restitution that adds no energy.
 #![cfg(any(feature = "std", feature = "libm"))]
 
+mod common;
+
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::prelude::*;
 
-/// An 8-particle rope, 7 m long (particles 1 m apart), let go taut above a peg of `radius`
-/// at the middle of a span (between particles 3 and 4) with its ends then held 6 m apart,
-/// settled for 6 s; returns the drawn B-spline and the peg's centre. Without the peg it
-/// would sag about 1.5 m.
+/// The drawn B-spline of an 8-particle rope (particles 1 m apart) settled for 6 s over a
+/// peg of `radius` below the middle of a span, and the peg's centre (see
+/// `common::draped_rope`).
 fn draped(radius: f64, touch: Touch) -> (Vec<Vec2<f64>>, Vec2<f64>) {
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -9.8),
-        damping: 2.0,
-        ..Settings::default()
-    };
-    let material = Material {
-        stiffness: 3000.0,
-        damping: 2.0,
-    };
-    let mut rope: Rope<Vec2<f64>, 8> = Rope::new(
-        Vec2::new(-3.5, 0.0),
-        Vec2::new(3.5, 0.0),
-        1.0,
-        material,
-        settings,
-    )
-    .unwrap();
-    rope.set_inv_mass(7, 0.0).unwrap();
-    rope.set_position(0, Vec2::new(-3.0, 0.0)).unwrap();
-    rope.set_position(7, Vec2::new(3.0, 0.0)).unwrap();
     let centre = Vec2::new(0.0, -1.0);
     let peg = [Collider::ball(centre, radius).unwrap()];
-    let contacts = Contacts::new(&peg, 0.0, touch).unwrap();
-    for _ in 0..360 {
-        rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
-    }
+    let rope: Rope<Vec2<f64>, 8> = common::draped_rope(&peg, touch, 360);
     let mut curve = vec![Vec2::default(); 4096];
     let n = rope.sample(Smoothing::BSpline, &mut curve).unwrap();
     curve.truncate(n);

@@ -55,11 +55,19 @@ fn length(line: &[Vec2<f32>]) -> f32 {
     line.windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
-/// What every frame must show, whatever its snapshot: each drawn rope starts at the hand,
+/// What every frame must show, whatever its snapshot: the smoothed rope is outside the pegs
+/// (radius 1.5), each drawn rope starts at the hand,
 /// and is as long as the rope (70 units) stretched by at most 3% under the swinging weight
 /// (tension up to 3·m·g on a whole-rope stiffness of 1500 per unit: about 2%), and at least
 /// as long as the straight line from its first point to its last.
 fn holds_its_properties(scene: &rope_scene::Scene) {
+    // The smoothed rope touches the pegs with its drawn curve: no drawn point is inside one.
+    for (x, y) in rope_scene::PEGS {
+        let peg = dunas::Vec2::new(x, y);
+        for p in scene.drawn()[0] {
+            assert!(p.distance(peg) >= 1.5, "{p:?} inside the peg at {peg:?}");
+        }
+    }
     let hand = scene.held_at();
     for line in scene.drawn() {
         assert_eq!(line[0], hand, "the pinned end is where the hand is");

@@ -1,5 +1,7 @@
 //! The catapult scene of the rope demo, shared with its snapshot test: three ropes of the same
-//! length, mass and material swinging from a pin with a weight on the end, hit by a gust.
+//! length, mass and material swinging from a pin with a weight on the end, hit by a gust,
+//! against two thin pegs and a wall. The smoothed rope touches them with its drawn curve; the
+//! raw ones with their particles, so pegs thinner than the spacing slip through the raw 8.
 #![allow(dead_code)]
 
 use std::time::{Duration, Instant};
@@ -40,6 +42,25 @@ fn rope<const N: usize>() -> Rope<Vec2<f32>, N> {
     r.set_inv_mass(N - 1, WEIGHT_INV_MASS)
         .expect("index in range"); // the penguin
     r
+}
+
+/// Pegs of radius 1.5 (0.15× the spacing of 8 particles, 0.6× that of 30) the ropes swing
+/// against, and a wall on the left.
+pub const PEGS: [(f32, f32); 2] = [(-22.0, -50.0), (8.0, -58.0)];
+const PEG_RADIUS: f32 = 1.5;
+pub const WALL_X: f32 = -50.0;
+/// The ropes' radius.
+const THICKNESS: f32 = 0.5;
+
+/// The pegs and the wall as colliders, a little slippery.
+pub fn colliders() -> [Collider<Vec2<f32>>; 3] {
+    let peg = |(x, y)| {
+        Collider::ball(Vec2::new(x, y), PEG_RADIUS)
+            .and_then(|c| c.with_friction(0.2, 0.1))
+            .expect("a valid peg")
+    };
+    let wall = Collider::half_space(Vec2::new(WALL_X, 0.0), Vec2::new(1.0, 0.0)).expect("a wall");
+    [peg(PEGS[0]), peg(PEGS[1]), wall]
 }
 
 /// A wind that gusts sideways from 3 s to 5 s.
@@ -86,6 +107,7 @@ pub struct Scene {
     raw30: Rope<Vec2<f32>, 30>,
     curve: [Vec2<f32>; CURVE_POINTS],
     wind: Wind<Vec2<f32>>,
+    colliders: [Collider<Vec2<f32>>; 3],
     /// Cost per frame of each rope: physics step plus the points it draws.
     pub costs: [Cost; 3],
     held_at: Vec2<f32>,
@@ -99,6 +121,7 @@ impl Scene {
             raw30: rope(),
             curve: [Vec2::default(); CURVE_POINTS],
             wind: gust(),
+            colliders: colliders(),
             costs: Default::default(),
             held_at: Self::hand(0.0),
         }
@@ -129,9 +152,14 @@ impl Scene {
         ] {
             pin.as_ref().expect("the hand stays in range");
         }
+        let touch = |touch| Contacts::new(&self.colliders, THICKNESS, touch).expect("valid");
+        let (curve, particles) = (
+            touch(Touch::Drawn(Smoothing::BSpline)),
+            touch(Touch::Particles),
+        );
         let t = Instant::now();
         self.smooth8
-            .step_with(dt, &mut self.wind)
+            .step_touching(dt, &mut self.wind, &curve)
             .expect("the rope stays stable");
         self.smooth8
             .sample(Smoothing::BSpline, &mut self.curve)
@@ -139,12 +167,12 @@ impl Scene {
         self.costs[0].add(t.elapsed());
         let t = Instant::now();
         self.raw8
-            .step_with(dt, &mut self.wind)
+            .step_touching(dt, &mut self.wind, &particles)
             .expect("the rope stays stable");
         self.costs[1].add(t.elapsed());
         let t = Instant::now();
         self.raw30
-            .step_with(dt, &mut self.wind)
+            .step_touching(dt, &mut self.wind, &particles)
             .expect("the rope stays stable");
         self.costs[2].add(t.elapsed());
     }
@@ -176,6 +204,9 @@ impl Scene {
             let mut cells = [b' '; PANEL_W * PANEL_H];
             let mut canvas =
                 Canvas::new(&mut cells, PANEL_W, PANEL_H).expect("buffer sized for the canvas");
+            let wall = [Vec2::new(WALL_X, 10.0), Vec2::new(WALL_X, -90.0)];
+            canvas.polyline(&view, &wall, b'|');
+            canvas.points(&view, &PEGS.map(|(x, y)| Vec2::new(x, y)), b'@');
             canvas.polyline(&view, line, b'#');
             canvas.points(&view, dots, b'o');
             canvas.text(1, 0, title.as_bytes());

@@ -7,6 +7,7 @@
 
 #[path = "../../tests/common/mod.rs"]
 mod common;
+mod contacts;
 mod fixed;
 mod flatten;
 mod integrators;
@@ -87,13 +88,14 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 6] = [
+    let sections: [(&str, Section); 7] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
         ("stability map", stability::run),
         ("fixed against float", fixed::run),
         ("level of detail", flatten::run),
+        ("contacts", contacts::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

@@ -296,3 +296,43 @@ pub fn released_rope<I: dunas::Integrator>(
     )
     .expect("a valid rope")
 }
+
+/// The contacts scene: an `N`-particle rope 7 m long (1 kg, gravity 9.8), let go taut at
+/// height 0 with its ends then held 6 m apart, stepped `frames` frames at 60 Hz against
+/// `colliders` with `touch`. Without colliders its middle would sag about 1.5 m.
+pub fn draped_rope<S: Scalar, const N: usize>(
+    colliders: &[dunas::collider::Collider<Vec2<S>>],
+    touch: dunas::contact::Touch,
+    frames: usize,
+) -> dunas::Rope<Vec2<S>, N> {
+    let f = |x: f64| S::from_f64(x);
+    let settings = Settings {
+        gravity: Vec2::new(f(0.0), f(-9.8)),
+        damping: f(2.0),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: f(3000.0),
+        damping: f(2.0),
+    };
+    let mut rope = dunas::Rope::new(
+        Vec2::new(f(-3.5), f(0.0)),
+        Vec2::new(f(3.5), f(0.0)),
+        f(1.0),
+        material,
+        settings,
+    )
+    .expect("a valid rope");
+    rope.set_inv_mass(N - 1, S::ZERO).expect("a particle");
+    rope.set_position(0, Vec2::new(f(-3.0), f(0.0)))
+        .expect("in range");
+    rope.set_position(N - 1, Vec2::new(f(3.0), f(0.0)))
+        .expect("in range");
+    let contacts =
+        dunas::contact::Contacts::new(colliders, S::ZERO, touch).expect("valid contacts");
+    for _ in 0..frames {
+        rope.step_touching(f(1.0 / 60.0), (), &contacts)
+            .expect("a step");
+    }
+    rope
+}

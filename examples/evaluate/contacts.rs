@@ -1,0 +1,221 @@
+//! (g) Contacts: how far the drawn rope sinks past a peg's top against what a frame costs,
+//! particle contacts against contacts on the drawn curve, across peg radius / particle spacing;
+//! and what each collider adds to a frame.
+
+use dunas::Smoothing;
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
+use dunas::{Rope, Vec2};
+
+use crate::common::draped_rope;
+use crate::report::{Run, Series, chart, csv, median_ns, num};
+
+/// Seconds of settling before anything is measured.
+const SETTLE_FRAMES: usize = 360;
+/// The peg's centre: below the middle of the 8-particle rope's middle span.
+const PEG: (f64, f64) = (0.0, -1.0);
+
+/// How the rope touches, and how it is drawn and judged.
+struct Mode {
+    name: &'static str,
+    touch: Touch,
+    drawn: Smoothing,
+}
+
+const MODES: [Mode; 3] = [
+    Mode {
+        name: "particle contacts, drawn as B-spline",
+        touch: Touch::Particles,
+        drawn: Smoothing::BSpline,
+    },
+    Mode {
+        name: "curve contacts, B-spline",
+        touch: Touch::Drawn(Smoothing::BSpline),
+        drawn: Smoothing::BSpline,
+    },
+    Mode {
+        name: "curve contacts, Catmull-Rom",
+        touch: Touch::Drawn(Smoothing::CatmullRom),
+        drawn: Smoothing::CatmullRom,
+    },
+];
+
+/// How far the drawn curve passes below the top of a ball at its centre's `x` (0 when it
+/// rests on or above it): 2048 points, the crossing interpolated.
+fn sink(curve: &[Vec2<f32>], centre: (f64, f64), radius: f64) -> f64 {
+    let top = centre.1 + radius;
+    curve
+        .windows(2)
+        .filter_map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let (ax, bx) = (f64::from(a.x), f64::from(b.x));
+            if (ax - centre.0) * (bx - centre.0) > 0.0 || ax == bx {
+                return None;
+            }
+            let s = (centre.0 - ax) / (bx - ax);
+            Some(f64::from(a.y) + s * f64::from(b.y - a.y))
+        })
+        .map(|y| (top - y).max(0.0))
+        .fold(0.0, f64::max)
+}
+
+/// The settled rope and the median cost of one more frame (ns).
+fn settled<const N: usize>(
+    colliders: &[Collider<Vec2<f32>>],
+    touch: Touch,
+    reps: usize,
+) -> (Rope<Vec2<f32>, N>, f64) {
+    let rope: Rope<Vec2<f32>, N> = draped_rope(colliders, touch, SETTLE_FRAMES);
+    let contacts = Contacts::new(colliders, 0.0, touch).expect("valid contacts");
+    let ns = median_ns(reps, 20, || {
+        let mut r = rope.clone();
+        r.step_touching(1.0 / 60.0, (), &contacts).expect("a step");
+        std::hint::black_box(&r);
+    });
+    (rope, ns)
+}
+
+pub fn run(run: &mut Run) {
+    let reps = run.reps();
+    let ratios: &[f64] = if run.quick {
+        &[0.1, 0.5]
+    } else {
+        &[0.05, 0.1, 0.2, 0.5, 1.0]
+    };
+    let spacing = 6.0 / 7.0; // ends held 6 m apart, 7 spans
+    let mut rows = Vec::new();
+    let mut series: Vec<Vec<(f64, f64)>> = vec![Vec::new(); MODES.len()];
+    let mut table = String::from(
+        "| peg radius / spacing | contacts | sinks past the peg's top (× radius) | frame (ns) |\n|---|---|---|---|\n",
+    );
+    let mut caught_at_tenth = true;
+    for &ratio in ratios {
+        let radius = ratio * spacing;
+        let peg = [
+            Collider::ball(Vec2::new(PEG.0 as f32, PEG.1 as f32), radius as f32).expect("a peg"),
+        ];
+        for (k, mode) in MODES.iter().enumerate() {
+            let (rope, ns) = settled::<8>(&peg, mode.touch, reps);
+            let mut curve = [Vec2::default(); 2048];
+            let n = rope.sample(mode.drawn, &mut curve).expect("a curve");
+            let depth = sink(&curve[..n], PEG, radius) / radius;
+            if ratio >= 0.1 && k > 0 && depth > 0.01 {
+                caught_at_tenth = false;
+            }
+            series[k].push((ns, depth.max(1e-4)));
+            table.push_str(&format!(
+                "| {ratio} | {} | {} | {ns:.0} |\n",
+                mode.name,
+                num(depth)
+            ));
+            rows.push(vec![
+                format!("{ratio}"),
+                mode.name.into(),
+                format!("{depth:.6}"),
+                format!("{ns:.1}"),
+            ]);
+        }
+    }
+    let plotted: Vec<Series> = MODES
+        .iter()
+        .zip(series)
+        .map(|(m, p)| Series::line(m.name, p))
+        .collect();
+    chart(
+        &run.path("contacts.svg"),
+        "A rope of 8 on a peg: how far the drawn rope sinks past the peg's top, against the frame's cost \
+         (one point per peg radius / spacing: 0.05 to 1)",
+        "frame cost, f32 (ns)",
+        "sink past the peg's top (× radius, 1e-4 = none)",
+        &plotted,
+        true,
+    );
+    csv(
+        &run.path("contacts.csv"),
+        &[
+            "radius_over_spacing",
+            "contacts",
+            "sink_over_radius",
+            "frame_ns",
+        ],
+        &rows,
+    );
+
+    // What each collider adds: pegs of a tenth of the spacing, spread under the rope.
+    let step_ns = {
+        let rope: Rope<Vec2<f32>, 8> = draped_rope(&[], Touch::Particles, SETTLE_FRAMES);
+        median_ns(reps, 20, || {
+            let mut r = rope.clone();
+            r.step(1.0 / 60.0).expect("a step");
+            std::hint::black_box(&r);
+        })
+    };
+    let counts = [0usize, 1, 2, 4, 8];
+    let mut per_collider = String::from(
+        "| colliders | particle contacts (ns) | curve contacts, B-spline (ns) |\n|---|---|---|\n",
+    );
+    let mut four = [0.0; 2];
+    let mut slopes = [0.0; 2];
+    let mut base = [0.0; 2];
+    for &count in &counts {
+        let pegs: Vec<Collider<Vec2<f32>>> = (0..count)
+            .map(|i| {
+                let x = -2.5 + 5.0 * (i as f32 + 0.5) / count.max(1) as f32;
+                Collider::ball(Vec2::new(x, -1.2), 0.1 * spacing as f32).expect("a peg")
+            })
+            .collect();
+        let mut cells = Vec::new();
+        for (m, touch) in [Touch::Particles, Touch::Drawn(Smoothing::BSpline)]
+            .into_iter()
+            .enumerate()
+        {
+            let (_, ns) = settled::<8>(&pegs, touch, reps);
+            if count == 0 {
+                base[m] = ns;
+            }
+            if count == 4 {
+                four[m] = ns - base[m];
+            }
+            if count == 8 {
+                slopes[m] = (ns - base[m]) / 8.0;
+            }
+            cells.push(format!("{ns:.0}"));
+        }
+        per_collider.push_str(&format!("| {count} | {} | {} |\n", cells[0], cells[1]));
+    }
+    let ratio4 = |m: usize| four[m] / step_ns;
+    run.target(
+        "contacts against 4 colliders on an 8-particle rope (f32) cost ≤ 1× its step",
+        format!(
+            "particles {:.2}×, curve {:.2}× (step {step_ns:.0} ns)",
+            ratio4(0),
+            ratio4(1)
+        ),
+        ratio4(0) <= 1.0 && ratio4(1) <= 1.0,
+        "each contact is a distance per particle (a square root), and curve contacts add a box \
+         test per span and a 21-key search on each span near a collider",
+    );
+    run.target(
+        "curve contacts catch pegs down to 0.1× the particle spacing",
+        if caught_at_tenth {
+            "caught (sink < 1% of the radius) from 0.1× up".into()
+        } else {
+            "not caught at every ratio ≥ 0.1×".into()
+        },
+        caught_at_tenth,
+        "see the contacts table",
+    );
+    run.section(
+        "(g) Contacts",
+        &format!(
+            "![contacts](contacts.svg)\n\nAn 8-particle rope settled for 6 s on a peg below the middle of a span; \
+             the drawn curve is judged on 2048 points by how far it passes below the peg's top (0: it rests \
+             on it). Particle contacts let every peg narrower than the spacing through, since no particle \
+             ever touches it; contacts on the drawn curve hold it. Frames are f32 medians on this machine.\n\n\
+             {table}\nCost per collider (pegs of 0.1× the spacing, each under the rope; the rope's own step \
+             is {step_ns:.0} ns): particle contacts add {:.0} ns, curve contacts {:.0} ns a collider.\n\n\
+             {per_collider}\nData: `contacts.csv`.",
+            slopes[0], slopes[1]
+        ),
+    );
+}
