@@ -1,0 +1,378 @@
+//! The device harness shared by the microcontroller examples: an instruction meter (SysTick
+//! under QEMU's `-icount`), semihosting output of `key=value` lines, the stack's high-water
+//! mark, and the same report on the host. An example defines
+//! `simulate<S: Scalar>(&mut impl Meter, fn(S) -> u32) -> Result<Report, Error>` at its root.
+#![allow(dead_code)]
+
+use dunas::prelude::*;
+
+/// Frames each example runs.
+pub const STEPS: usize = 600;
+/// The ASCII frame a run ends with.
+pub const W: usize = 40;
+pub const H: usize = 14;
+
+/// Counts the instructions `f` takes (0 where nothing can count them).
+pub trait Meter {
+    fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32);
+}
+
+/// What a run reports.
+pub struct Report {
+    pub checksum: u32,
+    /// The step and the curve of the costliest frame, in instructions (0 on the host).
+    pub step_instructions: u32,
+    pub sample_instructions: u32,
+    pub substeps: u16,
+    /// Frames in which a collider pushed the rope, where the scene has colliders.
+    pub touching_frames: Option<u32>,
+    /// The mean of the frames' instruction counts (step and curve).
+    pub mean_frame_instructions: u32,
+    pub frame: [u8; W * H],
+}
+
+/// FNV-1a over the raw bits of every coordinate: equal only for bit-identical states.
+pub fn checksum<S: Scalar>(points: &[Vec2<S>], bits: impl Fn(S) -> u32) -> u32 {
+    let mut h: u32 = 0x811c_9dc5;
+    for p in points {
+        for c in [p.x, p.y] {
+            for b in bits(c).to_le_bytes() {
+                h ^= b as u32;
+                h = h.wrapping_mul(0x0100_0193);
+            }
+        }
+    }
+    h
+}
+
+/// The catapult rope both device scenes swing: pinned at the origin, a weight on its end,
+/// released 40° from hanging, in pixel units (y up; 70 long, particles 10 apart). Everything
+/// else is the library's defaults; constants come from integers and ratios, so no f64
+/// conversion code reaches the device.
+pub fn catapult_rope<S: Scalar>() -> Result<Rope<Vec2<S>, 8>, Error> {
+    let px = |v: i16| S::from_i16(v);
+    let frac = |n: u32, d: u32| S::ratio(n, d);
+    // The default integrator, symplectic Euler, is a type: no other integrator is linked.
+    let settings = Settings {
+        gravity: Vec2::new(px(0), px(-200)),
+        damping: frac(1, 10),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: px(300),
+        damping: frac(1, 2),
+    };
+    let mut rope = Rope::new(
+        Vec2::new(px(0), px(0)),
+        Vec2::new(px(45), -frac(536, 10)),
+        px(7),
+        material,
+        settings,
+    )?;
+    rope.set_inv_mass(7, frac(1, 4))?;
+    Ok(rope)
+}
+
+/// Room for the curve: Catmull-Rom over 7 spans, each halved twice, is 29 points.
+pub const CURVE: usize = 33;
+
+/// Runs [`STEPS`] frames of `step` (which advances the rope by 1/60 s) and a Catmull-Rom
+/// curve of the rope, metering each; returns the report of the last frame's state, the ASCII
+/// frame drawn with `decorate` (what else the scene shows).
+pub fn run_frames<S: Scalar>(
+    meter: &mut impl Meter,
+    bits: impl Fn(S) -> u32,
+    rope: &mut Rope<Vec2<S>, 8>,
+    mut step: impl FnMut(&mut Rope<Vec2<S>, 8>) -> Result<dunas::system::StepInfo<S>, Error>,
+    decorate: impl FnOnce(&mut dunas::ascii::Canvas, &dunas::ascii::View<Vec2<S>>),
+) -> Result<Report, Error> {
+    let mut curve = [Vec2::new(S::ZERO, S::ZERO); CURVE];
+    let (mut step_instructions, mut sample_instructions, mut substeps) = (0, 0, 0);
+    let mut total: u64 = 0;
+    for _ in 0..STEPS {
+        let (stepped, n) = meter.count(|| step(rope));
+        let (sampled, m) = meter.count(|| rope.sample(Smoothing::CatmullRom, &mut curve));
+        substeps = stepped?.substeps;
+        sampled?;
+        total += u64::from(n + m);
+        if n + m > step_instructions + sample_instructions {
+            (step_instructions, sample_instructions) = (n, m);
+        }
+    }
+    let mut frame = [b' '; W * H];
+    let mut canvas = dunas::ascii::Canvas::new(&mut frame, W, H)?;
+    let view = dunas::ascii::View::new(
+        Vec2::new(S::from_i16(-60), S::from_i16(6)),
+        S::from_i16(3),
+        S::from_i16(6),
+    )?;
+    decorate(&mut canvas, &view);
+    canvas.polyline(&view, &curve, b'#');
+    canvas.points(&view, rope.positions(), b'o');
+    Ok(Report {
+        checksum: checksum(rope.positions(), bits),
+        step_instructions,
+        sample_instructions,
+        substeps,
+        touching_frames: None,
+        mean_frame_instructions: (total / STEPS as u64) as u32,
+        frame,
+    })
+}
+
+pub fn q16_bits(x: Q16) -> u32 {
+    x.to_bits() as u32
+}
+
+pub fn f32_bits(x: f32) -> u32 {
+    x.to_bits()
+}
+
+#[cfg(target_os = "none")]
+mod board {
+    use core::arch::asm;
+    use core::panic::PanicInfo;
+
+    use cortex_m::peripheral::{SYST, syst::SystClkSource};
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::{debug, hio};
+
+    use super::*;
+
+    /// Instruction counts from SysTick: under `-icount` the core clock advances by the same
+    /// amount per instruction, so ticks / ticks-per-instruction is exact.
+    struct SysTick {
+        _syst: SYST,
+        /// Ticks of the measurement itself (two back-to-back reads).
+        overhead: u32,
+        /// Ticks per 1000 instructions, from a sled of 1000 `nop`s.
+        per_1000: u32,
+    }
+
+    impl SysTick {
+        fn ticks(&mut self, f: impl FnOnce()) -> u32 {
+            let start = SYST::get_current();
+            f();
+            let end = SYST::get_current();
+            start.wrapping_sub(end) & 0x00ff_ffff // the counter counts down, 24 bits
+        }
+
+        fn new(mut syst: SYST) -> SysTick {
+            syst.set_clock_source(SystClkSource::Core);
+            syst.set_reload(0x00ff_ffff);
+            syst.clear_current();
+            syst.enable_counter();
+            let mut s = SysTick {
+                _syst: syst,
+                overhead: 0,
+                per_1000: 1,
+            };
+            s.overhead = s.ticks(|| {});
+            // Two calls alike but for 125 more turns of a 4-instruction loop in one: the
+            // difference is 500 instructions, from a dozen bytes of code.
+            let long = s.ticks(|| countdown(250));
+            let short = s.ticks(|| countdown(125));
+            s.per_1000 = (2 * long.saturating_sub(short)).max(1);
+            s
+        }
+    }
+
+    /// `turns` turns of a loop of exactly 4 instructions (`subs`, two `nop`s, `bne`).
+    #[inline(never)]
+    fn countdown(turns: u32) {
+        unsafe {
+            asm!(
+                "2:",
+                "subs r0, #1",
+                "nop",
+                "nop",
+                "bne 2b",
+                inout("r0") turns => _,
+                options(nomem, nostack)
+            )
+        }
+    }
+
+    impl Meter for SysTick {
+        fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+            let mut out = None;
+            let t = self.ticks(|| out = Some(f()));
+            let n = (t.saturating_sub(self.overhead) as u64 * 1000 + self.per_1000 as u64 / 2)
+                / self.per_1000 as u64;
+            match out {
+                Some(r) => (r, n as u32),
+                None => fail(b"meter"),
+            }
+        }
+    }
+
+    /// Writes to the host's standard output; integers by hand, so that `core::fmt` (20-30 KiB
+    /// with its float code) stays out of flash.
+    fn put(bytes: &[u8]) {
+        if let Ok(mut out) = hio::hstdout() {
+            let _ = out.write_all(bytes);
+        }
+    }
+
+    /// `key=value` in decimal, or in hex (8 digits) with `hex`.
+    fn put_number(key: &[u8], value: u32, hex: bool) {
+        let base = if hex { 16 } else { 10 };
+        let mut digits = [0u8; 10];
+        let (mut v, mut n) = (value, 0);
+        loop {
+            let d = (v % base) as u8;
+            digits[n] = if d < 10 { b'0' + d } else { b'a' + d - 10 };
+            n += 1;
+            v /= base;
+            if v == 0 && (!hex || n >= 8) {
+                break;
+            }
+        }
+        put(key);
+        put(b"=");
+        digits[..n].reverse();
+        put(&digits[..n]);
+        put(b"\n");
+    }
+
+    fn fail(what: &[u8]) -> ! {
+        put(b"error=");
+        put(what);
+        put(b"\n");
+        debug::exit(debug::EXIT_FAILURE);
+        loop {}
+    }
+
+    const PAINT: u32 = 0xdead_beef;
+
+    unsafe extern "C" {
+        static mut __sheap: u32;
+        static _stack_start: u32;
+    }
+
+    /// Fills the free RAM between the end of .bss and the current stack with a pattern.
+    fn paint_stack() {
+        unsafe {
+            let mut p = core::ptr::addr_of_mut!(__sheap);
+            let sp = cortex_m::register::msp::read() as *mut u32;
+            while p < sp.sub(16) {
+                p.write_volatile(PAINT);
+                p = p.add(1);
+            }
+        }
+    }
+
+    /// The deepest the stack reached: from the top of RAM down to the first overwritten word.
+    fn stack_high_water() -> u32 {
+        unsafe {
+            let mut p = core::ptr::addr_of!(__sheap);
+            while p.read_volatile() == PAINT {
+                p = p.add(1);
+            }
+            core::ptr::addr_of!(_stack_start) as u32 - p as u32
+        }
+    }
+
+    #[cfg(target_abi = "eabihf")]
+    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+        put(b"format=f32\n");
+        crate::simulate::<f32>(meter, f32_bits)
+    }
+
+    #[cfg(not(target_abi = "eabihf"))]
+    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+        put(b"format=q16\n");
+        crate::simulate::<Q16>(meter, q16_bits)
+    }
+
+    #[entry]
+    fn main() -> ! {
+        paint_stack();
+        let Some(peripherals) = cortex_m::Peripherals::take() else {
+            fail(b"peripherals")
+        };
+        let mut meter = SysTick::new(peripherals.SYST);
+        match run(&mut meter) {
+            Ok(r) => {
+                for row in r.frame.chunks(W) {
+                    put(b"|");
+                    put(row);
+                    put(b"|\n");
+                }
+                put_number(b"steps", STEPS as u32, false);
+                put_number(b"substeps", r.substeps as u32, false);
+                put_number(b"checksum", r.checksum, true);
+                if let Some(n) = r.touching_frames {
+                    put_number(b"touching_frames", n, false);
+                }
+                put_number(b"step_instructions", r.step_instructions, false);
+                put_number(b"sample_instructions", r.sample_instructions, false);
+                put_number(
+                    b"frame_instructions",
+                    r.step_instructions + r.sample_instructions,
+                    false,
+                );
+                put_number(b"mean_frame_instructions", r.mean_frame_instructions, false);
+                put_number(b"ticks_per_1000_instructions", meter.per_1000, false);
+                put_number(b"stack_bytes", stack_high_water(), false);
+                debug::exit(debug::EXIT_SUCCESS);
+                loop {}
+            }
+            Err(Error::Diverged) => fail(b"diverged"),
+            Err(_) => fail(b"setup"),
+        }
+    }
+
+    #[panic_handler]
+    fn panic(_: &PanicInfo) -> ! {
+        fail(b"panic")
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+pub struct NoMeter;
+
+#[cfg(not(target_os = "none"))]
+impl Meter for NoMeter {
+    fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+        (f(), 0)
+    }
+}
+
+/// An example's `simulate` in one format, on the host.
+#[cfg(not(target_os = "none"))]
+pub type Simulation<S> = fn(&mut NoMeter, fn(S) -> u32) -> Result<Report, Error>;
+
+/// The host's run: the simulation named by the first argument (`q16`, the default, or `f32`),
+/// printed as the device prints it (without instruction counts).
+#[cfg(not(target_os = "none"))]
+pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
+    let name = env!("CARGO_CRATE_NAME");
+    let format = std::env::args().nth(1).unwrap_or_else(|| "q16".into());
+    let report = match format.as_str() {
+        "q16" => q16(&mut NoMeter, q16_bits),
+        "f32" => f32(&mut NoMeter, f32_bits),
+        other => {
+            eprintln!("{name}: unknown format {other} (q16 or f32)");
+            std::process::exit(2);
+        }
+    };
+    match report {
+        Ok(r) => {
+            for row in r.frame.chunks(W) {
+                println!("|{}|", String::from_utf8_lossy(row));
+            }
+            println!("format={format}");
+            println!("steps={STEPS}");
+            println!("substeps={}", r.substeps);
+            println!("checksum={:08x}", r.checksum);
+            if let Some(n) = r.touching_frames {
+                println!("touching_frames={n}");
+            }
+        }
+        Err(e) => {
+            eprintln!("{name}: {e}");
+            std::process::exit(1);
+        }
+    }
+}
