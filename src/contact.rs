@@ -62,6 +62,10 @@ pub enum Touch {
     /// surface (the smoothing along both grid directions; [`Smoothing::Bezier`] is the
     /// cloth's [`patch`](crate::Cloth::patch)). Other systems test their particles.
     Drawn(Smoothing),
+    /// On the closed curve this smoothing draws through a rope whose particles form a loop
+    /// ([`Smoothed::closed`]); the particles for [`Smoothing::Bezier`], which cannot close,
+    /// and for fewer than 3 particles. Other systems test their particles.
+    DrawnLoop(Smoothing),
 }
 
 /// The colliders a step resolves contacts against, the thickness of what touches them, and
@@ -163,7 +167,10 @@ impl<'a, P: Point> Contacts<'a, P> {
             .map(|c| c.velocity().length())
             .fold(P::Scalar::ZERO, P::Scalar::max);
         let reach = match (self.touch, surface) {
-            (Touch::Drawn(Smoothing::CatmullRom), false) => speed * P::Scalar::ratio(5, 4),
+            (
+                Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom),
+                false,
+            ) => speed * P::Scalar::ratio(5, 4),
             (Touch::Drawn(Smoothing::CatmullRom), true) => speed * P::Scalar::ratio(25, 16),
             _ => speed,
         };
@@ -201,11 +208,14 @@ impl<'a, P: Point> Contacts<'a, P> {
         inv_mass: &[P::Scalar; K],
         (h, lag): (P::Scalar, P::Scalar),
     ) {
-        let Touch::Drawn(smoothing) = self.touch else {
-            return self.resolve_particles(pos, vel, inv_mass, (h, lag));
+        type Build<P, const K: usize> = fn(Smoothing, &[P; K]) -> Result<Smoothed<P, K>, Error>;
+        let (smoothing, build): (Smoothing, Build<P, K>) = match self.touch {
+            Touch::Drawn(s) => (s, Smoothed::open),
+            Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, Smoothed::ring),
+            _ => return self.resolve_particles(pos, vel, inv_mass, (h, lag)),
         };
         let mut weights = [P::Scalar::ZERO; K];
-        let Ok(mut curve) = Smoothed::open(smoothing, pos) else {
+        let Ok(mut curve) = build(smoothing, pos) else {
             return;
         };
         for (k, collider) in self.colliders.iter().enumerate() {
@@ -229,7 +239,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if let Some(given) = spread(pos, vel, inv_mass, |i| weights[i], (dx, dv)) {
                     self.report(k, given);
                 }
-                match Smoothed::open(smoothing, pos) {
+                match build(smoothing, pos) {
                     Ok(c) => curve = c,
                     Err(_) => return, // left the range: the step's guard undoes it
                 }

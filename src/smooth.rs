@@ -179,6 +179,14 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     /// one Bézier curve cannot close smoothly.
     pub fn closed(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
         const { assert!(K >= 3, "a closed loop needs at least 3 particles") };
+        Self::ring(method, particles)
+    }
+
+    /// [`closed`](Self::closed) for any `K`: [`Error::InvalidParameter`] below 3 particles.
+    pub(crate) fn ring(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
+        if K < 3 {
+            return Err(Error::InvalidParameter);
+        }
         check_points(particles)?;
         let at = |i: usize| particles[i % K];
         let sixth = P::Scalar::ratio(1, 6);

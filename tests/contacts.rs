@@ -291,6 +291,56 @@ fn a_cloth_draped_over_a_sphere_stays_outside_it() {
     assert!((top - 0.5).abs() < 0.02, "{top}");
 }
 
+/// A hoop (a loop of 12 particles drawn as a closed B-spline) hung on a thin nail through
+/// its closing span, the one from the last particle back to the first: with
+/// `Touch::DrawnLoop` the closed curve rests on the nail, as drawn.
+#[test]
+fn a_hoop_hangs_on_a_nail_through_its_closing_span() {
+    use dunas::smooth::Smoothed;
+    use dunas::spring::Springs;
+    const N: usize = 12;
+    // Particle 0 at the top, the closing span (11 to 0) just left of it.
+    let ring: [Vec2<f64>; N] = core::array::from_fn(|i| {
+        let a = std::f64::consts::TAU * i as f64 / N as f64 + std::f64::consts::FRAC_PI_2;
+        Vec2::new(a.cos(), a.sin())
+    });
+    let material = Material {
+        stiffness: 2000.0,
+        damping: 1.0,
+    };
+    let mut springs = Springs::<f64, 24>::closed_loop(&ring, material).unwrap();
+    for i in 0..N {
+        springs.connect(&ring, i, (i + 2) % N).unwrap();
+    }
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.8),
+        damping: 1.0,
+        ..Settings::default()
+    };
+    let mut hoop = Rope::from_parts(ring, [12.0; N], springs, settings).unwrap();
+    // A nail of radius 0.02 (a twentieth of the spacing) under the closing span's middle.
+    let top = Smoothed::closed(Smoothing::BSpline, hoop.position_array())
+        .unwrap()
+        .point(N - 1, 0.5);
+    let (radius, centre) = (0.02, top - Vec2::new(0.0, 0.05));
+    let nail = [Collider::ball(centre, radius).unwrap()];
+    let contacts = Contacts::new(&nail, 0.0, Touch::DrawnLoop(Smoothing::BSpline)).unwrap();
+    for _ in 0..240 {
+        hoop.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+    }
+    let mut curve = vec![Vec2::default(); 12 * 64 + 1];
+    let n = Smoothed::closed(Smoothing::BSpline, hoop.position_array())
+        .unwrap()
+        .sample(&mut curve)
+        .unwrap();
+    let deep = penetration(&curve[..n], centre, radius);
+    let lowest = curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
+    eprintln!("hoop: deepest {deep:.2e} into the nail, lowest point {lowest:.3}");
+    assert!(deep <= 0.01 * radius, "{deep}");
+    // It hangs from the nail (its bottom about a diameter below), not fallen off.
+    assert!(lowest > centre.y - 2.2, "{lowest}");
+}
+
 /// Bad input is an error, never a panic.
 #[test]
 fn bad_contacts_are_refused() {
