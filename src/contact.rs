@@ -208,6 +208,9 @@ impl<'a, P: Point> Contacts<'a, P> {
         inv_mass: &[P::Scalar; K],
         (h, lag): (P::Scalar, P::Scalar),
     ) {
+        if self.colliders.is_empty() {
+            return;
+        }
         type Build<P, const K: usize> = fn(Smoothing, &[P; K]) -> Result<Smoothed<P, K>, Error>;
         let (smoothing, build): (Smoothing, Build<P, K>) = match self.touch {
             Touch::Drawn(s) => (s, Smoothed::open),
