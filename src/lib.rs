@@ -96,6 +96,7 @@ pub mod collider;
 pub mod contact;
 pub mod curve;
 mod error;
+pub mod flatten;
 pub mod force;
 #[cfg(feature = "embedded-graphics")]
 pub mod graphics;

@@ -38,14 +38,15 @@ fn stable_f32_samplers_stay_within_a_hundredth_of_a_pixel() {
     }
 }
 
-/// Summary (f): dunas flattens with exactly lyon_geom's (Wang's) count, at most 2.3× kurbo's
-/// (the documented bound; an adaptive flattener that needs fewer still passes).
+/// Summary (f): the uniform flattener uses exactly lyon_geom's (Wang's) count, at most 2.3×
+/// kurbo's, and the adaptive one (`flatten`) at most 1.3× kurbo's (the documented bounds; a
+/// flattener that needs fewer still passes).
 #[test]
 fn flattening_counts_against_lyon_and_kurbo() {
     use kurbo::{CubicBez, PathEl, Point as KPoint};
     use lyon_geom::{CubicBezierSegment, point};
     let mut rng = Rng(0xf1a7);
-    let (mut ours, mut theirs) = (0usize, 0usize);
+    let (mut ours, mut adaptive, mut theirs) = (0usize, 0usize, 0usize);
     for _ in 0..100 {
         let p: [[f64; 2]; 4] =
             core::array::from_fn(|_| [rng.grid(200) as f64 / 16.0, rng.grid(200) as f64 / 16.0]);
@@ -76,11 +77,15 @@ fn flattening_counts_against_lyon_and_kurbo() {
             },
         );
         ours += n;
+        adaptive += dunas::flatten::segments(&c, 0.25).unwrap();
         theirs += kurbo;
     }
     let ratio = ours as f64 / theirs as f64;
     eprintln!("dunas uses {ratio:.2}× kurbo's segments");
     assert!(ratio <= 2.3, "dunas uses {ratio:.2}× kurbo's segments");
+    let ratio = adaptive as f64 / theirs as f64;
+    eprintln!("dunas's adaptive flattening uses {ratio:.2}× kurbo's segments");
+    assert!(ratio <= 1.3, "adaptive: {ratio:.2}× kurbo's segments");
 }
 
 /// A rope pinned at both ends 50 px apart with 70 px of rest length, settled, drawn with
