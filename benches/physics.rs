@@ -180,6 +180,30 @@ fn contacts(c: &mut Criterion) {
     g.finish();
 }
 
+/// An 8×8 sail: a 60 Hz step, and drawing a 24×24 grid with normals through the separable
+/// surface tables (Catmull-Rom, B-spline) or the single Bézier patch.
+fn surfaces(c: &mut Criterion) {
+    use dunas::surface::{SurfaceTable, sample};
+    let mut g = c.benchmark_group("surface");
+    let sail = cloth::<8, 8>(AnyIntegrator::SymplecticEuler);
+    bench_on(&mut g, "sail8_step", &sail, |s| s.step(1.0 / 60.0).unwrap());
+    let (mut pos, mut nor) = ([Vec3::default(); 576], [Vec3::default(); 576]);
+    for (name, smoothing) in [
+        ("sail8_draw24_catmull_rom", Smoothing::CatmullRom),
+        ("sail8_draw24_bspline", Smoothing::BSpline),
+        ("sail8_draw24_bezier_table", Smoothing::Bezier),
+    ] {
+        let table = SurfaceTable::<f32, 8, 24>::new(smoothing, 24).unwrap();
+        bench_on(&mut g, name, &sail, |s| {
+            sample(s.position_array(), &table, &table, &mut pos, &mut nor).unwrap()
+        });
+    }
+    bench_on(&mut g, "sail8_draw24_patch", &sail, |s| {
+        s.sample(24, 24, &mut pos, &mut nor).unwrap()
+    });
+    g.finish();
+}
+
 fn sizes(_: &mut Criterion) {
     use core::mem::size_of;
     println!(
@@ -206,6 +230,6 @@ criterion_group! {
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_millis(800))
         .sample_size(30);
-    targets = sizes, steps, frames, contacts
+    targets = sizes, steps, frames, contacts, surfaces
 }
 criterion_main!(benches);

@@ -17,7 +17,8 @@ use crate::{Error, Patch, Point, Scalar, Settings, Vec3};
 /// ([`GridSprings`]), so an 8×8 sail in `f32` is under 2 KiB of state.
 ///
 /// It derefs to its [`MassSpring`] (step, pin, move particles); particle `(i, j)` has flat
-/// index `j * U + i`. Drawing goes through the [`patch`](Cloth::patch) of its particles.
+/// index `j * U + i`. It draws itself through a smoothed surface ([`draw`](Cloth::draw):
+/// Catmull-Rom through every particle, or B-spline) or the Bézier [`patch`](Cloth::patch).
 ///
 /// ```
 /// use dunas::prelude::*;
@@ -176,6 +177,25 @@ impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Cloth<Vec3<S>, U,
     ) -> Result<usize, Error> {
         self.patch()?
             .sample_grid_with_normals(nu, nv, positions, normals)
+    }
+}
+
+impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Cloth<Vec3<S>, U, V, I> {
+    /// Draws the cloth's smoothed surface through the tables' smoothing (see
+    /// [`surface`](crate::surface)): `tu.count() × tv.count()` positions and unit normals,
+    /// evaluated separably. Catmull-Rom passes through every particle; the tables are built
+    /// once and reused every frame.
+    ///
+    /// # Errors
+    /// As [`surface::sample`](crate::surface::sample).
+    pub fn draw<const NU: usize, const NV: usize>(
+        &self,
+        tu: &crate::surface::SurfaceTable<S, U, NU>,
+        tv: &crate::surface::SurfaceTable<S, V, NV>,
+        positions: &mut [Vec3<S>],
+        normals: &mut [Vec3<S>],
+    ) -> Result<usize, Error> {
+        crate::surface::sample(self.system.position_array(), tu, tv, positions, normals)
     }
 }
 

@@ -115,6 +115,7 @@ pub mod shape;
 pub mod smooth;
 pub mod spring;
 mod substeps;
+pub mod surface;
 pub mod system;
 pub mod timestep;
 #[cfg(all(feature = "xml", dunas_std))]

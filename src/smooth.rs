@@ -97,22 +97,80 @@ impl Smoothing {
                 (t3 - t2) * half,
             ],
         };
-        // Local weights for particles span-1 ..= span+2; open ends reflect a phantom particle
-        // through the end one (2·p0 - p1), as the spans were built.
-        for (k, w) in local.into_iter().enumerate() {
-            let i = span as isize + k as isize - 1;
-            let last = K as isize - 1;
-            if closed {
-                weights[i.rem_euclid(K as isize) as usize] += w;
-            } else if i < 0 {
-                weights[0] += w + w;
-                weights[1] -= w;
-            } else if i > last {
-                weights[K - 1] += w + w;
-                weights[K - 2] -= w;
-            } else {
-                weights[i as usize] += w;
+        fold(local, closed, span, weights);
+    }
+
+    /// The derivatives `d/dt` of [`weights`](Self::weights) at the same point: the particle
+    /// weights of the curve's velocity along span `span` (per unit of the span's `t`).
+    pub(crate) fn slopes<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        span: usize,
+        t: S,
+        slopes: &mut [S; K],
+    ) {
+        let t = crate::curve::clamp_unit(t);
+        let zero = S::ZERO;
+        *slopes = [zero; K];
+        let spans = match (self, closed) {
+            (Smoothing::Bezier, _) => 1,
+            (_, true) => K,
+            (_, false) => K - 1,
+        };
+        let span = span.min(spans.saturating_sub(1));
+        let (t2, half) = (t * t, S::ratio(1, 2));
+        let n = |k: i16| S::from_i16(k);
+        let local = match self {
+            Smoothing::Bezier => {
+                // B'_i = (K-1)·(B_{i-1} - B_i) over the Bernstein basis of degree K-2.
+                let mut lower = [zero; K];
+                crate::sampler::bernstein_weights(t, &mut lower[..K - 1]);
+                let degree = S::ratio((K - 1) as u32, 1);
+                for i in 0..K {
+                    let before = if i > 0 { lower[i - 1] } else { zero };
+                    let here = if i < K - 1 { lower[i] } else { zero };
+                    slopes[i] = (before - here) * degree;
+                }
+                return;
             }
+            Smoothing::Polyline => [zero, -S::ONE, S::ONE, zero],
+            Smoothing::BSpline => {
+                let s = S::ONE - t;
+                [
+                    -s * s * half,
+                    (n(3) * t2 - n(4) * t) * half,
+                    (n(-3) * t2 + n(2) * t + S::ONE) * half,
+                    t2 * half,
+                ]
+            }
+            Smoothing::CatmullRom => [
+                (n(-3) * t2 + n(4) * t - S::ONE) * half,
+                (n(9) * t2 - n(10) * t) * half,
+                (n(-9) * t2 + n(8) * t + S::ONE) * half,
+                (n(3) * t2 - n(2) * t) * half,
+            ],
+        };
+        fold(local, closed, span, slopes);
+    }
+}
+
+/// Adds the local weights of particles `span-1 ..= span+2` into `weights`: open ends reflect a
+/// phantom particle through the end one (`2·p0 - p1`), as the spans were built; a closed
+/// curve wraps.
+fn fold<S: Scalar, const K: usize>(local: [S; 4], closed: bool, span: usize, weights: &mut [S; K]) {
+    for (k, w) in local.into_iter().enumerate() {
+        let i = span as isize + k as isize - 1;
+        let last = K as isize - 1;
+        if closed {
+            weights[i.rem_euclid(K as isize) as usize] += w;
+        } else if i < 0 {
+            weights[0] += w + w;
+            weights[1] -= w;
+        } else if i > last {
+            weights[K - 1] += w + w;
+            weights[K - 2] -= w;
+        } else {
+            weights[i as usize] += w;
         }
     }
 }

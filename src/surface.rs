@@ -1,0 +1,290 @@
+//! Smooth surfaces through a grid of particles, drawn separably: the smoothing of a row of
+//! particles ([`Smoothing`]) along both grid directions.
+//!
+//! The surface over a `U × V` grid is `S(u, v) = Σ_ij wu_i(u) wv_j(v) p_ij`, with `wu` and
+//! `wv` the particle weights the smoothing gives a curve of `U` (or `V`) particles, so the
+//! same names mean the same thing on curves and surfaces: [`Smoothing::CatmullRom`] passes
+//! through every particle (C¹), [`Smoothing::BSpline`] is C² and stays inside them,
+//! [`Smoothing::Bezier`] is the single patch of [`Patch`](crate::Patch), and
+//! [`Smoothing::Polyline`] is the raw bilinear grid. Parameters run over the whole grid: a
+//! sample at `u = i / (U - 1)` lies on the column of particles `i` (for the splines).
+//!
+//! A [`SurfaceTable`] holds one direction's weights and their slopes for a sample count,
+//! built once (the way [`BernsteinTable`](crate::sampler::BernsteinTable) does for curves).
+//! [`sample`] then evaluates rows first and columns second, and takes the normals from the two
+//! slope tables: for a `U × V` grid drawn `nu × nv` with 4-wide bases, about
+//! `4·(2·V·nu + 3·nu·nv)` multiply-adds a coordinate and one square root a normal.
+//!
+//! ```
+//! use dunas::{Smoothing, Vec3, surface::{SurfaceTable, sample}};
+//! let grid: [[Vec3<f32>; 4]; 4] = core::array::from_fn(|j| {
+//!     core::array::from_fn(|i| Vec3::new(i as f32, 0.0, j as f32))
+//! });
+//! let table = SurfaceTable::<f32, 4, 16>::new(Smoothing::CatmullRom, 7)?;
+//! let (mut pos, mut nor) = ([Vec3::default(); 49], [Vec3::default(); 49]);
+//! assert_eq!(sample(&grid, &table, &table, &mut pos, &mut nor)?, 49);
+//! assert_eq!(pos[2 * 7 + 4], grid[1][2]); // sample (4, 2) lies on particle (2, 1)
+//! assert!((nor[0].y.abs() - 1.0).abs() < 1e-6); // a flat sheet: normals along y
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::{Error, Point, Scalar, Smoothing, Vec3};
+
+/// One direction's particle weights and slopes at `count ≤ N` evenly spaced parameters over
+/// a row of `K` particles. Size: `2·N·K` numbers.
+#[derive(Clone, Debug)]
+pub struct SurfaceTable<S, const K: usize, const N: usize> {
+    smoothing: Smoothing,
+    count: usize,
+    weights: [[S; K]; N],
+    /// `d/du` of the weights, `u` over the whole row (`0..=1`).
+    slopes: [[S; K]; N],
+    /// The non-zero weights of each sample: `first..end`.
+    support: [(u8, u8); N],
+}
+
+impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
+    /// The table for `count` samples, `2 ≤ count ≤ N`, of a row of `K` particles smoothed by
+    /// `smoothing`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `count` outside `2..=N`.
+    pub fn new(smoothing: Smoothing, count: usize) -> Result<Self, Error> {
+        const { assert!(K >= 2 && K <= 255, "a surface row has 2 to 255 particles") };
+        if !(2..=N).contains(&count) {
+            return Err(Error::InvalidParameter);
+        }
+        let zero = S::ZERO;
+        let mut table = SurfaceTable {
+            smoothing,
+            count,
+            weights: [[zero; K]; N],
+            slopes: [[zero; K]; N],
+            support: [(0, 0); N],
+        };
+        let spans = match smoothing {
+            Smoothing::Bezier => 1,
+            _ => K - 1,
+        };
+        let per_span = S::ratio(spans as u32, 1);
+        for k in 0..count {
+            // Sample k at u = k / (count - 1): span ⌊u·spans⌋ at the fraction left over.
+            let scaled = k * spans;
+            let last = count - 1;
+            let (span, t) = if k == last {
+                (spans - 1, S::ONE)
+            } else {
+                (scaled / last, S::ratio((scaled % last) as u32, last as u32))
+            };
+            smoothing.weights(false, span, t, &mut table.weights[k]);
+            smoothing.slopes(false, span, t, &mut table.slopes[k]);
+            for s in &mut table.slopes[k] {
+                *s = *s * per_span;
+            }
+            let nonzero = |i: &usize| table.weights[k][*i] != zero || table.slopes[k][*i] != zero;
+            let first = (0..K).find(nonzero).unwrap_or(0);
+            let end = (0..K).rev().find(nonzero).map_or(first, |i| i + 1);
+            table.support[k] = (first as u8, end as u8);
+        }
+        Ok(table)
+    }
+
+    /// Samples in this direction.
+    #[inline]
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// The smoothing the table was built for.
+    #[inline]
+    pub fn smoothing(&self) -> Smoothing {
+        self.smoothing
+    }
+
+    /// `Σ w_i p_i` of sample `k` over `points`, skipping zero weights.
+    #[inline]
+    fn at<P: Point<Scalar = S>>(&self, k: usize, points: impl Fn(usize) -> P) -> P {
+        let (first, end) = self.support[k];
+        let mut at = P::default();
+        for i in usize::from(first)..usize::from(end) {
+            at += points(i) * self.weights[k][i];
+        }
+        at
+    }
+
+    /// `(Σ w_i p_i, Σ w'_i p_i)` of sample `k` over `points`, skipping zero weights.
+    #[inline]
+    fn apply<P: Point<Scalar = S>>(&self, k: usize, points: impl Fn(usize) -> P) -> (P, P) {
+        let (first, end) = self.support[k];
+        let (mut at, mut slope) = (P::default(), P::default());
+        for i in usize::from(first)..usize::from(end) {
+            let p = points(i);
+            at += p * self.weights[k][i];
+            slope += p * self.slopes[k][i];
+        }
+        (at, slope)
+    }
+}
+
+/// Samples the surface of `grid` (row `j` is `grid[j]`, along `u`) at `tu.count() ×
+/// tv.count()` points, writing positions and unit normals (`∂u × ∂v`, the zero vector where
+/// the surface is degenerate) row by row, `u` fastest; returns the count. Rows first, then
+/// columns: for each of the `V` particle rows, its `nu` curve points and slopes; then each
+/// sample combines the rows with `tv`'s weights. Needs stack for `2·V·N` points.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when the tables were built for different smoothings;
+/// [`Error::BufferTooSmall`] when either buffer holds fewer than `nu·nv` points.
+pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const NV: usize>(
+    grid: &[[Vec3<S>; U]; V],
+    tu: &SurfaceTable<S, U, NU>,
+    tv: &SurfaceTable<S, V, NV>,
+    positions: &mut [Vec3<S>],
+    normals: &mut [Vec3<S>],
+) -> Result<usize, Error> {
+    if tu.smoothing != tv.smoothing {
+        return Err(Error::InvalidParameter);
+    }
+    let (nu, nv) = (tu.count, tv.count);
+    let needed = nu * nv;
+    let got = positions.len().min(normals.len());
+    if got < needed {
+        return Err(Error::BufferTooSmall { needed, got });
+    }
+    // Rows first: every particle row's points and u-slopes at the nu samples.
+    let zero = Vec3::default();
+    let mut rows = [[zero; NU]; V];
+    let mut row_slopes = [[zero; NU]; V];
+    for j in 0..V {
+        for a in 0..nu {
+            (rows[j][a], row_slopes[j][a]) = tu.apply(a, |i| grid[j][i]);
+        }
+    }
+    // Then columns: position, ∂v from the rows' points, ∂u from their slopes.
+    for b in 0..nv {
+        for a in 0..nu {
+            let (p, dv) = tv.apply(b, |j| rows[j][a]);
+            let du = tv.at(b, |j| row_slopes[j][a]);
+            let k = b * nu + a;
+            positions[k] = p;
+            normals[k] = unit_normal(du, dv).unwrap_or_default();
+        }
+    }
+    Ok(needed)
+}
+
+/// `∂u × ∂v`, normalised; in fixed point the partials are normalised first, so that their
+/// product stays in range.
+fn unit_normal<S: Scalar>(du: Vec3<S>, dv: Vec3<S>) -> Option<Vec3<S>> {
+    if S::FIXED_POINT {
+        du.normalize()?.cross(dv.normalize()?).normalize()
+    } else {
+        du.cross(dv).normalize()
+    }
+}
+
+#[cfg(all(test, dunas_floats))]
+mod tests {
+    use super::*;
+    use crate::Patch;
+    use crate::smooth::Smoothed;
+
+    /// A bumpy 5×4 grid.
+    fn grid() -> [[Vec3<f64>; 5]; 4] {
+        core::array::from_fn(|j| {
+            core::array::from_fn(|i| {
+                let (x, z) = (i as f64, j as f64 * 1.3);
+                Vec3::new(x + 0.1 * z, (x * 1.7).sin() * (z * 0.9).cos(), z)
+            })
+        })
+    }
+
+    fn close(a: Vec3<f64>, b: Vec3<f64>) -> bool {
+        (a - b).length() < 1e-9
+    }
+
+    #[test]
+    fn catmull_rom_passes_through_every_particle() {
+        let g = grid();
+        // 4 spans × 3 samples each along u, 3 spans × 2 along v: particles on samples.
+        let tu = SurfaceTable::<f64, 5, 16>::new(Smoothing::CatmullRom, 13).unwrap();
+        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::CatmullRom, 7).unwrap();
+        let (mut pos, mut nor) = ([Vec3::default(); 91], [Vec3::default(); 91]);
+        assert_eq!(sample(&g, &tu, &tv, &mut pos, &mut nor), Ok(91));
+        for j in 0..4 {
+            for i in 0..5 {
+                assert!(close(pos[2 * j * 13 + 3 * i], g[j][i]), "({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn bezier_is_the_patch_and_its_normals() {
+        let g = grid();
+        let patch = Patch::new(g).unwrap();
+        let tu = SurfaceTable::<f64, 5, 16>::new(Smoothing::Bezier, 9).unwrap();
+        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::Bezier, 6).unwrap();
+        let (mut pos, mut nor) = ([Vec3::default(); 54], [Vec3::default(); 54]);
+        sample(&g, &tu, &tv, &mut pos, &mut nor).unwrap();
+        for b in 0..6 {
+            for a in 0..9 {
+                let (u, v) = (a as f64 / 8.0, b as f64 / 5.0);
+                let k = b * 9 + a;
+                assert!(close(pos[k], patch.eval(u, v)), "({a}, {b})");
+                assert!(close(nor[k], patch.normal(u, v).unwrap()), "({a}, {b})");
+            }
+        }
+    }
+
+    /// Each row of the B-spline surface at a particle row is that row's B-spline curve, and
+    /// the normals agree with central differences of the positions.
+    #[test]
+    fn rows_are_the_curves_and_normals_the_differences() {
+        let g = grid();
+        let n = 17;
+        let tu = SurfaceTable::<f64, 5, 32>::new(Smoothing::BSpline, n).unwrap();
+        let tv = SurfaceTable::<f64, 4, 32>::new(Smoothing::BSpline, 7).unwrap();
+        let (mut pos, mut nor) = ([Vec3::default(); 17 * 7], [Vec3::default(); 17 * 7]);
+        sample(&g, &tu, &tv, &mut pos, &mut nor).unwrap();
+        // Row v = 0 is the clamped B-spline of particle row 0.
+        let mut curve = [Vec3::default(); 17];
+        Smoothed::open(Smoothing::BSpline, &g[0])
+            .unwrap()
+            .sample(&mut curve)
+            .unwrap();
+        for a in 0..n {
+            assert!(close(pos[a], curve[a]), "{a}");
+        }
+        // Normals against the cross product of central differences (second order).
+        for b in 1..6 {
+            for a in 1..n - 1 {
+                let k = b * n + a;
+                let du = pos[k + 1] - pos[k - 1];
+                let dv = pos[k + n] - pos[k - n];
+                let reference = du.cross(dv).normalize().unwrap();
+                assert!((nor[k] - reference).length() < 0.05, "({a}, {b})");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_tables_and_buffers_are_errors() {
+        assert!(SurfaceTable::<f32, 4, 8>::new(Smoothing::BSpline, 1).is_err());
+        assert!(SurfaceTable::<f32, 4, 8>::new(Smoothing::BSpline, 9).is_err());
+        let g = [[Vec3::<f32>::default(); 4]; 4];
+        let a = SurfaceTable::<f32, 4, 8>::new(Smoothing::BSpline, 4).unwrap();
+        let b = SurfaceTable::<f32, 4, 8>::new(Smoothing::CatmullRom, 4).unwrap();
+        let (mut pos, mut nor) = ([Vec3::default(); 16], [Vec3::default(); 15]);
+        assert_eq!(
+            sample(&g, &a, &b, &mut pos, &mut nor),
+            Err(Error::InvalidParameter)
+        );
+        assert!(matches!(
+            sample(&g, &a, &a, &mut pos, &mut nor),
+            Err(Error::BufferTooSmall {
+                needed: 16,
+                got: 15
+            })
+        ));
+    }
+}
