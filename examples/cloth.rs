@@ -1,7 +1,7 @@
-//! Sails as PPM images: an 8×8 sail drawn through its Bézier patch beside a 20×20 sail drawn
-//! raw, in wireframe and shaded (Lambert with the patch normals), both filling against a thin
-//! stay (the 8×8 touches it with its drawn surface, the 20×20 with its particles), and a fleet
-//! of 12 sails in one image with the frame time printed.
+//! Sails as PPM images: an 8×8 sail drawn through its particles (a Catmull-Rom surface)
+//! beside a 20×20 sail drawn raw, in wireframe and shaded (Lambert with the surface normals),
+//! both filling against a thin stay (the 8×8 touches it with its drawn surface, the 20×20 with
+//! its particles), and a fleet of 12 sails in one image with the frame time printed.
 //!
 //! Run: `cargo run --release --example cloth -- OUT_DIR [--size WxH] [--frames N]`
 //! (defaults 640x360 and 6 frames, a quarter second apart). Writes `sail_wire_NNN.ppm`,
@@ -17,6 +17,7 @@ use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::force::Wind;
 use dunas::spring::Material;
+use dunas::surface::SurfaceTable;
 use dunas::{Cloth, Vec3};
 use dunas::{Settings, Smoothing};
 use raster::{Camera, Image, lambert};
@@ -236,7 +237,10 @@ fn main() {
     let (mut small, mut small_wind) = sail::<8, 8>(5.0);
     let (mut big, mut big_wind) = sail::<20, 20>(5.0);
     let stay = stay();
-    let on_surface = Contacts::new(&stay, 0.01, Touch::Drawn(Smoothing::Bezier)).expect("valid");
+    let on_surface =
+        Contacts::new(&stay, 0.01, Touch::Drawn(Smoothing::CatmullRom)).expect("valid");
+    // The 8×8 sails are drawn through their particles (Catmull-Rom), DRAWN points a side.
+    let table = SurfaceTable::<f32, 8, DRAWN>::new(Smoothing::CatmullRom, DRAWN).expect("2..=N");
     let on_particles = Contacts::new(&stay, 0.01, Touch::Particles).expect("valid");
     let mut fleet: Vec<_> = (0..12)
         .map(|k| sail::<8, 8>(3.0 + 0.4 * k as f32))
@@ -258,7 +262,7 @@ fn main() {
             h as f32 * 0.18,
         ],
     };
-    println!("frame | 8x8 step+patch (µs) | 20x20 step (µs) | fleet of 12: simulate + draw (ms)");
+    println!("frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of 12: simulate + draw (ms)");
     for frame in 0..args.frames {
         let (mut t_small, mut t_big) = (0.0, 0.0);
         for _ in 0..STEPS_PER_FRAME {
@@ -267,7 +271,7 @@ fn main() {
                 .step_touching(STEP, &mut small_wind, &on_surface)
                 .expect("the sail stays stable");
             small
-                .sample(DRAWN, DRAWN, &mut pos, &mut nor)
+                .draw(&table, &table, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             t_small += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -303,7 +307,7 @@ fn main() {
                     .expect("the sail stays stable");
             }
             cloth
-                .sample(DRAWN, DRAWN, &mut pos, &mut nor)
+                .draw(&table, &table, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             let (col, row) = ((k % 4) as f32, (k / 4) as f32);
             let cam = Camera {
