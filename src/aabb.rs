@@ -49,6 +49,24 @@ impl<P: Point> Aabb<P> {
         }
     }
 
+    /// This box grown by `r` on every side.
+    #[inline]
+    pub(crate) fn grown(self, r: P::Scalar) -> Self {
+        Aabb {
+            min: self.min - P::splat(r),
+            max: self.max + P::splat(r),
+        }
+    }
+
+    /// This box moved by `offset`.
+    #[inline]
+    pub(crate) fn moved(self, offset: P) -> Self {
+        Aabb {
+            min: self.min + offset,
+            max: self.max + offset,
+        }
+    }
+
     /// `true` when `p` is inside or on the boundary.
     pub fn contains(&self, p: P) -> bool {
         (0..P::DIM).all(|d| self.min.coord(d) <= p.coord(d) && p.coord(d) <= self.max.coord(d))

@@ -359,13 +359,15 @@ impl<P: Point> Collider<P> {
     /// A box holding the solid (the half-space's is the whole safe range): the broad phase.
     pub fn bounds(&self) -> Aabb<P> {
         match &self.solid {
-            Solid::Ball { center, radius } => grown(Aabb::point(*center), *radius),
+            Solid::Ball { center, radius } => Aabb::point(*center).grown(*radius),
             Solid::Capsule {
                 a,
                 dir,
                 length,
                 radius,
-            } => grown(Aabb::point(*a).including(*a + *dir * *length), *radius),
+            } => Aabb::point(*a)
+                .including(*a + *dir * *length)
+                .grown(*radius),
             Solid::HalfSpace { .. } => Aabb {
                 min: P::splat(-P::Scalar::SAFE_RANGE),
                 max: P::splat(P::Scalar::SAFE_RANGE),
@@ -443,13 +445,6 @@ fn from_centre<P: Point>(p: P, centre: P, radius: P::Scalar) -> (P::Scalar, P) {
     match length_and_unit(p - centre) {
         (len, Some(n)) => (len - radius, n),
         (_, None) => (-radius, first_axis()),
-    }
-}
-
-fn grown<P: Point>(b: Aabb<P>, r: P::Scalar) -> Aabb<P> {
-    Aabb {
-        min: b.min - P::splat(r),
-        max: b.max + P::splat(r),
     }
 }
 

@@ -15,20 +15,22 @@
 //!
 //! - [`Touch::Particles`] tests the particles only: cheap (one distance per particle and
 //!   collider), and enough when every collider is wider than the particle spacing.
-//! - [`Touch::Drawn`] tests what the game draws. A rope's curve: each span's control-point
-//!   box first (the convex hull property) against the collider's box and its distance from
-//!   the box's centre, then the deepest point of the span, found by 5 samples and 8 rounds
-//!   that halve the bracket around the deepest (to 1/1024 of a cubic span; halving only, so
-//!   shifts and additions in `Q16`). A
+//! - [`Touch::Drawn`] tests what the game draws ([`Touch::DrawnLoop`]: a loop's closed
+//!   curve). A rope's curve: each span's control-point box first (the convex hull property)
+//!   against the collider's box and its distance from the box's centre, then the deepest
+//!   point of the span, found by 5 samples and 8 rounds that halve the bracket around the
+//!   deepest (to 1/1024 of a cubic span; halving only, so shifts and additions in `Q16`). A
 //!   cloth's surface: each cell between four neighbouring particles, its supporting
 //!   particles' box grown by the basis's overshoot (Catmull-Rom: 25/16), then the deepest
-//!   point of the cell by 3×3 samples and 8 halving rounds of a compass search (to 1/1000 of
-//!   the cell). The correction `d` found at a point with particle weights `w` (see
-//!   [`Smoothed::weights`](crate::smooth::Smoothed::weights); a product of the two
-//!   directions' weights on a surface) moves particle `i` by `(w_i / m_i) · d / Σ_j w_j² / m_j`:
-//!   the smallest mass-weighted change that moves the drawn point by exactly `d` (with equal
-//!   masses, `w_i · d / Σ w_j²`). Friction and restitution go the same way. This catches pegs
-//!   and poles far thinner than the particle spacing, at 2-5× the cost of particle contacts.
+//!   point of the cell by 3×3 samples and 8 halving rounds of a compass search (its last
+//!   step 1/512 of the cell). The correction `d` found at a point with particle weights `w`
+//!   (see [`Smoothed::weights`](crate::smooth::Smoothed::weights); a product of the two
+//!   directions' weights on a surface) moves particle `i` by
+//!   `(w_i / m_i) · d / Σ_j w_j² / m_j`: the smallest mass-weighted change that moves the
+//!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
+//!   restitution go the same way. This catches pegs and poles far thinner than the particle
+//!   spacing; a collider the drawn rope touches costs about 4× what it costs at the
+//!   particles (`docs/summary.md` (g): 711 against 175 ns a frame for an 8-particle rope).
 //!
 //! **Two-way coupling.** [`Contacts::with_impulses`] reports, after each step, the impulse
 //! the rope or cloth gave each collider: add it, divided by the body's mass, to the velocity
@@ -223,7 +225,7 @@ impl<'a, P: Point> Contacts<'a, P> {
         };
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = collider.velocity() * lag;
-            let reach = grown_by(collider.bounds(), shift, self.thickness);
+            let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for span in 0..curve.span_count() {
                 let hull = curve.span_bounds(span);
                 if !hull.overlaps(&reach) {
@@ -271,17 +273,17 @@ impl<'a, P: Point> Contacts<'a, P> {
             Smoothing::CatmullRom => P::Scalar::ratio(25, 16),
             _ => P::Scalar::ONE,
         };
-        let mut grid = Grid::<P::Scalar, U, V> {
+        let mut surface = SurfacePoint::<P::Scalar, U, V> {
             smoothing,
             wu: [P::Scalar::ZERO; U],
             wv: [P::Scalar::ZERO; V],
         };
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = collider.velocity() * lag;
-            let reach = grown_by(collider.bounds(), shift, self.thickness);
+            let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for cell in 0..(U - 1) * (V - 1) {
                 let (cu, cv) = (cell % (U - 1), cell / (U - 1));
-                let Some(hull) = grid.cell_bounds(pos, (cu, cv), overshoot) else {
+                let Some(hull) = surface.cell_bounds(pos, (cu, cv), overshoot) else {
                     continue;
                 };
                 if !hull.overlaps(&reach) {
@@ -292,20 +294,20 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 let Some((u, v)) = deepest_in_cell(
                     |u, v| {
-                        grid.at((cu, cv), (u, v));
-                        let x = grid.point(pos) + shift;
+                        surface.at((cu, cv), (u, v));
+                        let x = surface.point(pos) + shift;
                         (x, collider.search_key(x, scale))
                     },
                     |x, spacing| collider.gap(x) < self.thickness + spacing,
                 ) else {
                     continue;
                 };
-                grid.at((cu, cv), (u, v));
-                let (x, v) = (grid.point(pos), grid.point(vel));
+                surface.at((cu, cv), (u, v));
+                let (x, v) = (surface.point(pos), surface.point(vel));
                 let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
                     continue;
                 };
-                let w = |i: usize| grid.wu[i % U] * grid.wv[i / U];
+                let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
                 if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
                     self.report(k, given);
                 }
@@ -404,13 +406,13 @@ fn spread<P: Point>(
 
 /// A point of the surface that a smoothing draws through a `U × V` grid: its two directions'
 /// particle weights.
-struct Grid<S, const U: usize, const V: usize> {
+struct SurfacePoint<S, const U: usize, const V: usize> {
     smoothing: Smoothing,
     wu: [S; U],
     wv: [S; V],
 }
 
-impl<S: Scalar, const U: usize, const V: usize> Grid<S, U, V> {
+impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
     /// Moves to `(u, v)` in `[0, 1]²` of cell `(cu, cv)`, the cell between particles
     /// `(cu, cv)` and `(cu + 1, cv + 1)`.
     fn at(&mut self, (cu, cv): (usize, usize), (u, v): (S, S)) {
@@ -474,9 +476,9 @@ fn locate<S: Scalar>(smoothing: Smoothing, cell: usize, t: S, n: usize) -> (usiz
 
 /// The `(u, v)` in `[0, 1]²` of a cell where `key` (of a point: the point and its search
 /// key) is least: the best of 3×3 samples, then 8 rounds of a compass search whose step halves
-/// from 1/4 (to 1/1000 of the cell). `None`, without the search, unless `near(best sample,
-/// the longest distance between neighbouring samples)`: every point of a cell lies that close
-/// to a sample unless the cell folds between them.
+/// from 1/4 (its last step 1/512 of the cell). `None`, without the search, unless
+/// `near(best sample, the longest distance between neighbouring samples)`: every point of a
+/// cell lies that close to a sample unless the cell folds between them.
 fn deepest_in_cell<P: Point>(
     mut key: impl FnMut(P::Scalar, P::Scalar) -> (P, P::Scalar),
     near: impl Fn(P, P::Scalar) -> bool,
@@ -523,12 +525,4 @@ fn deepest_in_cell<P: Point>(
         step = step * half;
     }
     Some((best.0, best.1))
-}
-
-/// `b` moved back by `behind` and grown by `r` on every side.
-fn grown_by<P: Point>(b: Aabb<P>, behind: P, r: P::Scalar) -> Aabb<P> {
-    Aabb {
-        min: b.min - behind - P::splat(r),
-        max: b.max - behind + P::splat(r),
-    }
 }

@@ -155,7 +155,7 @@ impl<P: Point, const N: usize> Bezier<P, N> {
     /// that orders points like one): the best of `2^L + 1` evenly spaced points (`L` = 2 up
     /// to a cubic, 3 up to degree 7, else 4), then 8 rounds that halve the bracket around the
     /// best point, to `2^-(L+8)` (under 1/1000 of the curve). Halving only: in `Q16` shifts
-    /// and additions, with no multiplication. Cost: `2^L + 17` keys and about `2^L + 20`
+    /// and additions, with no multiplication. Cost: `2^L + 17` keys and `2^L + 2L + 15`
     /// [`split_half`](Self::split_half)s. Finds the least of a key with one minimum near the
     /// best sample; a key with several minima gets the one nearest the best sample.
     pub(crate) fn deepest(&self, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
@@ -165,7 +165,8 @@ impl<P: Point, const N: usize> Bezier<P, N> {
             _ => 4,
         };
         let count = 1u32 << levels;
-        // The evenly spaced points are the ends of the pieces of `levels` halvings.
+        // The evenly spaced points are the ends of the pieces of `levels` halvings; piece `i`
+        // alone takes `levels` splits.
         let piece = |i: u32| {
             let mut c = *self;
             for bit in (0..levels).rev() {
@@ -175,9 +176,9 @@ impl<P: Point, const N: usize> Bezier<P, N> {
             c
         };
         let mut keys = [key(self.start()); 17];
+        self.leaves(levels, 0, &mut |i, c| keys[i as usize + 1] = key(c.end()));
         let mut best = 0;
         for i in 1..=count {
-            keys[i as usize] = key(piece(i - 1).end());
             if keys[i as usize] < keys[best as usize] {
                 best = i;
             }
@@ -206,6 +207,17 @@ impl<P: Point, const N: usize> Bezier<P, N> {
             }
         }
         found.0
+    }
+
+    /// Calls `visit(first + i, piece)` for the `2^levels` pieces of `levels` halvings, in
+    /// order: `2^levels - 1` splits in all.
+    fn leaves(&self, levels: u32, first: u32, visit: &mut impl FnMut(u32, &Self)) {
+        if levels == 0 {
+            return visit(first, self);
+        }
+        let (l, r) = self.split_half();
+        l.leaves(levels - 1, 2 * first, visit);
+        r.leaves(levels - 1, 2 * first + 1, visit);
     }
 
     #[inline]

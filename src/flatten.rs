@@ -120,6 +120,7 @@ impl<S: Scalar> Plan<S> {
     /// the piece runs forward along it (its control point projects inside the chord).
     fn write(&self, [a, b, c]: [Vec2<S>; 3], out: &mut [Vec2<S>], base: usize) -> S {
         let dd = b + b - a - c;
+        let bend = dd.length();
         let velocity = |t: S| (b - a - dd * t) * S::from_i16(2);
         let (mut worst, mut t0, mut p0) = (S::ZERO, S::ZERO, a);
         for i in 1..=self.n {
@@ -137,7 +138,7 @@ impl<S: Scalar> Plan<S> {
             let off = if forward {
                 dd.cross(chord).abs() / len
             } else {
-                dd.length()
+                bend
             };
             worst = worst.max(off * h * h * S::ratio(1, 4));
             (t0, p0) = (t1, p1);

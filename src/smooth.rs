@@ -65,13 +65,6 @@ impl Smoothing {
     ) {
         let t = crate::curve::clamp_unit(t);
         let zero = S::ZERO;
-        *weights = [zero; K];
-        let spans = match (self, closed) {
-            (Smoothing::Bezier, _) => 1,
-            (_, true) => K,
-            (_, false) => K - 1,
-        };
-        let span = span.min(spans.saturating_sub(1));
         let (t2, sixth, half) = (t * t, S::ratio(1, 6), S::ratio(1, 2));
         let t3 = t2 * t;
         let n = |k: i16| S::from_i16(k);
@@ -111,13 +104,6 @@ impl Smoothing {
     ) {
         let t = crate::curve::clamp_unit(t);
         let zero = S::ZERO;
-        *slopes = [zero; K];
-        let spans = match (self, closed) {
-            (Smoothing::Bezier, _) => 1,
-            (_, true) => K,
-            (_, false) => K - 1,
-        };
-        let span = span.min(spans.saturating_sub(1));
         let (t2, half) = (t * t, S::ratio(1, 2));
         let n = |k: i16| S::from_i16(k);
         let local = match self {
@@ -154,10 +140,13 @@ impl Smoothing {
     }
 }
 
-/// Adds the local weights of particles `span-1 ..= span+2` into `weights`: open ends reflect a
-/// phantom particle through the end one (`2·p0 - p1`), as the spans were built; a closed
-/// curve wraps.
+/// Writes the local weights of particles `span-1 ..= span+2` of a spline over `K` particles
+/// into `weights` (zero elsewhere), `span` clamped to the last: open ends reflect a phantom
+/// particle through the end one (`2·p0 - p1`), as the spans were built; a closed curve wraps.
 fn fold<S: Scalar, const K: usize>(local: [S; 4], closed: bool, span: usize, weights: &mut [S; K]) {
+    *weights = [S::ZERO; K];
+    let spans = if closed { K } else { K.saturating_sub(1) };
+    let span = span.min(spans.saturating_sub(1));
     for (k, w) in local.into_iter().enumerate() {
         let i = span as isize + k as isize - 1;
         let last = K as isize - 1;

@@ -533,27 +533,7 @@ fn damped_motion_never_reaches_subnormal_velocities() {
 /// How far a 1 m, 1 kg rope of 30 particles (axial stiffness 1000 N) hanging from its top
 /// stretches at rest; the continuum answer is `m·g / (2·EA)` = 0.49%.
 fn hanging_stretch<I: Integrator>(integrator: I) -> f64 {
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -9.81),
-        damping: 2.0,
-        ..Settings::default()
-    }
-    .with_integrator(integrator);
-    let material = Material {
-        stiffness: 1000.0 * 29.0,
-        damping: 0.5,
-    };
-    let mut rope: dunas::Rope<Vec2<f64>, 30, 30, I> = dunas::Rope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(0.0, -1.0),
-        1.0,
-        material,
-        settings,
-    )
-    .unwrap();
-    for _ in 0..600 {
-        rope.step(1.0 / 60.0).unwrap();
-    }
+    let rope = common::settled_hanging_rope::<f64, I>(integrator);
     let p = rope.positions();
     p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() - 1.0
 }

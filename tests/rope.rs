@@ -428,26 +428,7 @@ fn accuracy_levels_bound_the_energy_swing() {
 /// thousands of rad/s, is below a micrometre. The bounds are the ones `Rope`'s docs state.
 #[test]
 fn a_resting_f32_rope_stays_still() {
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -9.81),
-        damping: 2.0,
-        ..Settings::default()
-    };
-    let material = Material {
-        stiffness: 1000.0f32 * 29.0,
-        damping: 0.5,
-    };
-    let mut rope: Rope<Vec2<f32>, 30> = Rope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(0.0, -1.0),
-        1.0,
-        material,
-        settings,
-    )
-    .unwrap();
-    for _ in 0..600 {
-        rope.step(1.0 / 60.0).unwrap();
-    }
+    let mut rope = common::settled_hanging_rope::<f32, _>(dunas::integrator::SymplecticEuler);
     let start = rope.positions().to_vec();
     let (mut speed, mut drift) = (0.0f32, 0.0f32);
     for _ in 0..120 {

@@ -204,7 +204,7 @@ impl Scene {
             let mut cells = [b' '; PANEL_W * PANEL_H];
             let mut canvas =
                 Canvas::new(&mut cells, PANEL_W, PANEL_H).expect("buffer sized for the canvas");
-            let wall = [Vec2::new(WALL_X, 10.0), Vec2::new(WALL_X, -90.0)];
+            let wall = [Vec2::new(WALL_X, 10.0), Vec2::new(WALL_X, -150.0)];
             canvas.polyline(&view, &wall, b'|');
             canvas.points(&view, &PEGS.map(|(x, y)| Vec2::new(x, y)), b'@');
             canvas.polyline(&view, line, b'#');

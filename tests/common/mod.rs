@@ -336,3 +336,33 @@ pub fn draped_rope<S: Scalar, const N: usize>(
     }
     rope
 }
+
+/// A 1 m, 1 kg rope of 30 particles (axial stiffness 1000 N, damping 2/s) hanging from its
+/// top, settled for 10 s at 60 Hz.
+pub fn settled_hanging_rope<S: Scalar, I: dunas::Integrator>(
+    integrator: I,
+) -> dunas::Rope<Vec2<S>, 30, 30, I> {
+    let f = |x: f64| S::from_f64(x);
+    let settings = Settings {
+        gravity: Vec2::new(f(0.0), f(-9.81)),
+        damping: f(2.0),
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: f(1000.0 * 29.0),
+        damping: f(0.5),
+    };
+    let mut rope = dunas::Rope::new(
+        Vec2::new(f(0.0), f(0.0)),
+        Vec2::new(f(0.0), f(-1.0)),
+        f(1.0),
+        material,
+        settings,
+    )
+    .expect("a valid rope");
+    for _ in 0..600 {
+        rope.step(f(1.0 / 60.0)).expect("a step");
+    }
+    rope
+}
