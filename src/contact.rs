@@ -174,6 +174,11 @@ impl<'a, P: Point> Contacts<'a, P> {
                 false,
             ) => speed * P::Scalar::ratio(5, 4),
             (Touch::Drawn(Smoothing::CatmullRom), true) => speed * P::Scalar::ratio(25, 16),
+            (
+                Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline),
+                false,
+            ) => speed * P::Scalar::ratio(31, 20),
+            (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
             _ => speed,
         };
         (reach + collider) / self.thickness
@@ -261,6 +266,17 @@ impl<'a, P: Point> Contacts<'a, P> {
         inv_mass: &[[P::Scalar; U]; V],
         (h, lag): (P::Scalar, P::Scalar),
     ) {
+        // The points whose boxes hold the cells: the particles, or a natural spline's
+        // control points (it passes through the particles but bulges past them).
+        let natural = self.touch == Touch::Drawn(Smoothing::NaturalSpline);
+        let hull_points = |pos: &[[P; U]; V]| {
+            let mut points = *pos;
+            if natural {
+                crate::surface::natural_grid(&mut points);
+            }
+            points
+        };
+        let mut hulls = hull_points(pos);
         let (pos, vel, inv_mass) = (
             pos.as_flattened_mut(),
             vel.as_flattened_mut(),
@@ -283,7 +299,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for cell in 0..(U - 1) * (V - 1) {
                 let (cu, cv) = (cell % (U - 1), cell / (U - 1));
-                let Some(hull) = surface.cell_bounds(pos, (cu, cv), overshoot) else {
+                let Some(hull) = surface.cell_bounds(hulls.as_flattened(), (cu, cv), overshoot)
+                else {
                     continue;
                 };
                 if !hull.overlaps(&reach) {
@@ -310,6 +327,10 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
                 if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
                     self.report(k, given);
+                    if natural {
+                        let grid = pos.as_chunks::<U>().0;
+                        hulls = hull_points(&core::array::from_fn(|j| grid[j]));
+                    }
                 }
             }
         }

@@ -22,6 +22,7 @@
 //! ```
 
 use crate::error::check_positive;
+use crate::smooth::{Smoothed, Smoothing};
 use crate::{Bezier, Error, Patch, Point, Scalar};
 
 /// The most segments [`segments`] returns (`2^16`); a request that needs more is clamped.
@@ -104,6 +105,71 @@ pub fn patch_segments<P: Point, const U: usize, const V: usize>(
     ))
 }
 
+/// Segment counts `(nu, nv)` along `u` and `v` that keep the bilinear quads of a
+/// `(nu + 1) × (nv + 1)` grid drawn by [`surface::sample`](crate::surface::sample) within
+/// `tolerance` of the surface `smoothing` makes of `grid` (row `j` is `grid[j]`, along `u`).
+/// For a distant sail pass the pixel tolerance divided by the camera's pixels per world unit:
+/// the counts fall with the distance.
+///
+/// Each direction gets half the tolerance. For the splines, every row (and column) curve's
+/// cubic spans give Wang's bound per span (on the natural spline's control net), times the
+/// most the other direction's weights add up to in absolute value (4/3 for the B-splines'
+/// clamped ends, 5/4 for Catmull-Rom); the count is that per span times the spans, so that
+/// samples fall on span joints. One Bézier is [`patch_segments`]; the raw grid is one segment
+/// a cell. Cost: `O(U·V)`, two square roots a direction.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when `tolerance` is not a positive finite number;
+/// [`Error::NonFinite`] / [`Error::OutOfRange`] for a particle outside the format's range.
+pub fn surface_segments<P: Point, const U: usize, const V: usize>(
+    grid: &[[P; U]; V],
+    smoothing: Smoothing,
+    tolerance: P::Scalar,
+) -> Result<(usize, usize), Error> {
+    check_positive(tolerance)?;
+    const { assert!(U >= 2 && V >= 2, "a surface needs at least 2×2 particles") };
+    crate::error::check_points(grid.as_flattened())?;
+    let (basis, blend) = match smoothing {
+        Smoothing::Bezier => return patch_segments(&Patch::new(*grid)?, tolerance),
+        Smoothing::Polyline => return Ok((U - 1, V - 1)),
+        Smoothing::CatmullRom => (Smoothing::CatmullRom, P::Scalar::ratio(5, 4)),
+        Smoothing::BSpline | Smoothing::NaturalSpline => {
+            (Smoothing::BSpline, P::Scalar::ratio(4, 3))
+        }
+    };
+    let mut net = *grid;
+    if smoothing == Smoothing::NaturalSpline {
+        crate::surface::natural_grid(&mut net);
+    }
+    let half_tol = Scalar::midpoint(tolerance, P::Scalar::ZERO);
+    let (mut mu, mut mv) = (P::Scalar::ZERO, P::Scalar::ZERO);
+    for row in &net {
+        mu = mu.max(span_bend(basis, row)?);
+    }
+    for i in 0..U {
+        let column: [P; V] = core::array::from_fn(|j| net[j][i]);
+        mv = mv.max(span_bend(basis, &column)?);
+    }
+    let per_span = |m: P::Scalar| wang_count(3, m * blend, half_tol);
+    Ok((
+        per_span(mu).saturating_mul(U - 1).min(MAX_SEGMENTS),
+        per_span(mv).saturating_mul(V - 1).min(MAX_SEGMENTS),
+    ))
+}
+
+/// The largest half second difference of the cubic spans `smoothing` makes of `row`.
+fn span_bend<P: Point, const K: usize>(
+    smoothing: Smoothing,
+    row: &[P; K],
+) -> Result<P::Scalar, Error> {
+    let curve = Smoothed::open(smoothing, row)?;
+    Ok(curve
+        .cubic_spans()
+        .iter()
+        .map(|span| half_second_difference(span.points().iter().copied()))
+        .fold(P::Scalar::ZERO, P::Scalar::max))
+}
+
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
@@ -153,5 +219,72 @@ mod tests {
             assert_eq!(segments(&c, tol), Err(Error::InvalidParameter));
         }
         assert_eq!(segments(&c, 1e-30), Ok(MAX_SEGMENTS));
+    }
+
+    /// The drawn grid at the counts `surface_segments` picks is within the tolerance of the
+    /// surface everywhere: bilinear interpolation of the coarse samples against 4× finer ones
+    /// at the same parameters, for every smoothing.
+    #[test]
+    fn surface_counts_keep_the_grid_within_tolerance() {
+        use crate::Vec3;
+        use crate::surface::{SurfaceTable, sample};
+        use std::vec;
+        let grid: [[Vec3<f64>; 6]; 5] = core::array::from_fn(|j| {
+            core::array::from_fn(|i| {
+                let (x, z) = (i as f64, j as f64);
+                Vec3::new(x + 0.2 * z, 0.8 * (x * 1.3).sin() * (z * 1.1).cos(), z)
+            })
+        });
+        for smoothing in [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::NaturalSpline,
+        ] {
+            let mut previous = (usize::MAX, usize::MAX);
+            for tol in [0.02, 0.05, 0.2] {
+                let (su, sv) = surface_segments(&grid, smoothing, tol).unwrap();
+                assert!(su <= previous.0 && sv <= previous.1, "{smoothing:?} {tol}");
+                previous = (su, sv);
+                let coarse =
+                    |n: usize, k: usize| SurfaceTable::<f64, 6, 400>::new(smoothing, n * k + 1);
+                let (cu, cv) = (
+                    coarse(su, 1).unwrap(),
+                    SurfaceTable::<f64, 5, 400>::new(smoothing, sv + 1).unwrap(),
+                );
+                let (fu, fv) = (
+                    coarse(su, 4).unwrap(),
+                    SurfaceTable::<f64, 5, 400>::new(smoothing, 4 * sv + 1).unwrap(),
+                );
+                let (nu, nv) = (su + 1, sv + 1);
+                let mut c = (
+                    vec![Vec3::default(); nu * nv],
+                    vec![Vec3::default(); nu * nv],
+                );
+                sample(&grid, &cu, &cv, &mut c.0, &mut c.1).unwrap();
+                let (mu, mv) = (4 * su + 1, 4 * sv + 1);
+                let mut f = (
+                    vec![Vec3::default(); mu * mv],
+                    vec![Vec3::default(); mu * mv],
+                );
+                sample(&grid, &fu, &fv, &mut f.0, &mut f.1).unwrap();
+                let mut worst: f64 = 0.0;
+                for b in 0..mv {
+                    for a in 0..mu {
+                        let (i, j) = ((a / 4).min(su - 1), (b / 4).min(sv - 1));
+                        let (s, t) = ((a - 4 * i) as f64 / 4.0, (b - 4 * j) as f64 / 4.0);
+                        let q = |i: usize, j: usize| c.0[j * nu + i];
+                        let bilinear = q(i, j)
+                            .lerp(q(i + 1, j), s)
+                            .lerp(q(i, j + 1).lerp(q(i + 1, j + 1), s), t);
+                        worst = worst.max((bilinear - f.0[b * mu + a]).length());
+                    }
+                }
+                assert!(
+                    worst <= tol,
+                    "{smoothing:?} tol {tol}: {worst} at {su}×{sv}"
+                );
+            }
+        }
     }
 }

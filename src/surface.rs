@@ -4,7 +4,8 @@
 //! The surface over a `U × V` grid is `S(u, v) = Σ_ij wu_i(u) wv_j(v) p_ij`, with `wu` and
 //! `wv` the particle weights the smoothing gives a curve of `U` (or `V`) particles, so the
 //! same names mean the same thing on curves and surfaces: [`Smoothing::CatmullRom`] passes
-//! through every particle (C¹), [`Smoothing::BSpline`] is C² and stays inside them,
+//! through every particle (C¹), [`Smoothing::NaturalSpline`] passes through every particle
+//! and is C², [`Smoothing::BSpline`] is C² and stays inside them,
 //! [`Smoothing::Bezier`] is the single patch of [`Patch`](crate::Patch), and
 //! [`Smoothing::Polyline`] is the raw bilinear grid. Parameters run over the whole grid: a
 //! sample at `u = i / (U - 1)` lies on the column of particles `i` (for the splines).
@@ -28,10 +29,12 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::smooth::natural_controls;
 use crate::{Error, Point, Scalar, Smoothing, Vec3};
 
 /// One direction's particle weights and slopes at `count ≤ N` evenly spaced parameters over
-/// a row of `K` particles. Size: `2·N·K` numbers.
+/// a row of `K` particles (for [`Smoothing::NaturalSpline`], the weights of the B-spline
+/// control net that [`sample`] solves for). Size: `2·N·K` numbers.
 #[derive(Clone, Debug)]
 pub struct SurfaceTable<S, const K: usize, const N: usize> {
     smoothing: Smoothing,
@@ -62,6 +65,11 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
             slopes: [[zero; K]; N],
             support: [(0, 0); N],
         };
+        // A natural spline is the B-spline of a control net that `sample` solves for.
+        let basis = match smoothing {
+            Smoothing::NaturalSpline => Smoothing::BSpline,
+            other => other,
+        };
         let spans = match smoothing {
             Smoothing::Bezier => 1,
             _ => K - 1,
@@ -76,8 +84,8 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
             } else {
                 (scaled / last, S::ratio((scaled % last) as u32, last as u32))
             };
-            smoothing.weights(false, span, t, &mut table.weights[k]);
-            smoothing.slopes(false, span, t, &mut table.slopes[k]);
+            basis.weights(false, span, t, &mut table.weights[k]);
+            basis.slopes(false, span, t, &mut table.slopes[k]);
             for s in &mut table.slopes[k] {
                 *s = *s * per_span;
             }
@@ -130,7 +138,9 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
 /// tv.count()` points, writing positions and unit normals (`∂u × ∂v`, the zero vector where
 /// the surface is degenerate) row by row, `u` fastest; returns the count. Rows first, then
 /// columns: for each of the `V` particle rows, its `nu` curve points and slopes; then each
-/// sample combines the rows with `tv`'s weights. Needs stack for `2·V·N` points.
+/// sample combines the rows with `tv`'s weights. A natural spline first solves its control
+/// net (a tridiagonal system along every row and column, `O(U·V)`). Needs stack for
+/// `U·V + 2·V·N` points.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] when the tables were built for different smoothings;
@@ -151,13 +161,17 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     if got < needed {
         return Err(Error::BufferTooSmall { needed, got });
     }
+    let mut net = *grid;
+    if tu.smoothing == Smoothing::NaturalSpline {
+        natural_grid(&mut net);
+    }
     // Rows first: every particle row's points and u-slopes at the nu samples.
     let zero = Vec3::default();
     let mut rows = [[zero; NU]; V];
     let mut row_slopes = [[zero; NU]; V];
     for j in 0..V {
         for a in 0..nu {
-            (rows[j][a], row_slopes[j][a]) = tu.apply(a, |i| grid[j][i]);
+            (rows[j][a], row_slopes[j][a]) = tu.apply(a, |i| net[j][i]);
         }
     }
     // Then columns: position, ∂v from the rows' points, ∂u from their slopes.
@@ -171,6 +185,21 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
         }
     }
     Ok(needed)
+}
+
+/// Turns a grid of particles into the B-spline control net whose surface passes through
+/// every particle: the natural spline's solve along every row, then every column.
+pub(crate) fn natural_grid<P: Point, const U: usize, const V: usize>(grid: &mut [[P; U]; V]) {
+    for row in grid.iter_mut() {
+        natural_controls(row, false);
+    }
+    for i in 0..U {
+        let mut column: [P; V] = core::array::from_fn(|j| grid[j][i]);
+        natural_controls(&mut column, false);
+        for (row, c) in grid.iter_mut().zip(column) {
+            row[i] = c;
+        }
+    }
 }
 
 /// `∂u × ∂v`, normalised; in fixed point the partials are normalised first, so that their
@@ -215,6 +244,30 @@ mod tests {
             for i in 0..5 {
                 assert!(close(pos[2 * j * 13 + 3 * i], g[j][i]), "({i}, {j})");
             }
+        }
+    }
+
+    /// The natural spline surface passes through every particle, and along a particle row it
+    /// is that row's natural spline curve (the column solve leaves particle rows alone).
+    #[test]
+    fn natural_spline_passes_through_every_particle() {
+        let g = grid();
+        let tu = SurfaceTable::<f64, 5, 16>::new(Smoothing::NaturalSpline, 13).unwrap();
+        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
+        let (mut pos, mut nor) = ([Vec3::default(); 91], [Vec3::default(); 91]);
+        assert_eq!(sample(&g, &tu, &tv, &mut pos, &mut nor), Ok(91));
+        for j in 0..4 {
+            for i in 0..5 {
+                assert!(close(pos[2 * j * 13 + 3 * i], g[j][i]), "({i}, {j})");
+            }
+        }
+        let mut curve = [Vec3::default(); 13];
+        Smoothed::open(Smoothing::NaturalSpline, &g[2])
+            .unwrap()
+            .sample(&mut curve)
+            .unwrap();
+        for (a, c) in curve.iter().enumerate() {
+            assert!(close(pos[4 * 13 + a], *c), "{a}");
         }
     }
 

@@ -8,6 +8,7 @@ mod common;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::prelude::*;
+use dunas::surface::SurfaceTable;
 
 /// The drawn B-spline of an 8-particle rope (particles 1 m apart) settled for 6 s over a
 /// peg of `radius` below the middle of a span, and the peg's centre (see
@@ -17,7 +18,11 @@ fn draped(radius: f64, touch: Touch) -> (Vec<Vec2<f64>>, Vec2<f64>) {
     let peg = [Collider::ball(centre, radius).unwrap()];
     let rope: Rope<Vec2<f64>, 8> = common::draped_rope(&peg, touch, 360);
     let mut curve = vec![Vec2::default(); 4096];
-    let n = rope.sample(Smoothing::BSpline, &mut curve).unwrap();
+    let drawn = match touch {
+        Touch::Drawn(s) => s,
+        _ => Smoothing::BSpline,
+    };
+    let n = rope.sample(drawn, &mut curve).unwrap();
     curve.truncate(n);
     (curve, centre)
 }
@@ -37,16 +42,18 @@ fn penetration(curve: &[Vec2<f64>], centre: Vec2<f64>, radius: f64) -> f64 {
 fn a_thin_peg_holds_the_drawn_rope_only_with_curve_contacts() {
     let spacing = 1.0;
     let radius = 0.1 * spacing;
-    let (curve, centre) = draped(radius, Touch::Drawn(Smoothing::BSpline));
-    let deep = penetration(&curve, centre, radius);
-    eprintln!("curve contacts: deepest {deep:.2e} for a peg of radius {radius:.3}");
-    assert!(deep <= 0.01 * radius, "{deep}");
-    // The rope really rests on it: its middle is at the peg's top, not 0.5 m below.
-    let middle = curve[curve.len() / 2];
-    assert!(
-        (middle.y - (centre.y + radius)).abs() < 0.02,
-        "middle {middle:?}"
-    );
+    for smoothing in [Smoothing::BSpline, Smoothing::NaturalSpline] {
+        let (curve, centre) = draped(radius, Touch::Drawn(smoothing));
+        let deep = penetration(&curve, centre, radius);
+        eprintln!("{smoothing:?} contacts: deepest {deep:.2e} for a peg of radius {radius:.3}");
+        assert!(deep <= 0.01 * radius, "{smoothing:?} {deep}");
+        // The rope really rests on it: its middle is at the peg's top, not 0.5 m below.
+        let middle = curve[curve.len() / 2];
+        assert!(
+            (middle.y - (centre.y + radius)).abs() < 0.02,
+            "{smoothing:?} middle {middle:?}"
+        );
+    }
 
     let (curve, centre) = draped(radius, Touch::Particles);
     let lowest = curve.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
@@ -263,32 +270,45 @@ fn a_cloth_draped_over_a_sphere_stays_outside_it() {
             settings,
         )
         .unwrap();
-        let ball = [Collider::ball(Vec3::new(0.0, 0.0, 0.0), 0.5).unwrap()];
+        // A frictionless sheet on a ball balances unstably: friction keeps it where it fell.
+        let ball = [Collider::ball(Vec3::new(0.0, 0.0, 0.0), 0.5)
+            .unwrap()
+            .with_friction(0.5, 0.4)
+            .unwrap()];
         let contacts = Contacts::new(&ball, 0.0, touch).unwrap();
         for _ in 0..180 {
             sheet.step_touching(1.0 / 60.0, (), &contacts).unwrap();
         }
-        let mut samples = vec![Vec3::default(); 33 * 33];
+        // The surface as drawn: 33 × 33 samples, the middle one at u = v = 1/2.
+        let smoothing = match touch {
+            Touch::Drawn(s) => s,
+            _ => Smoothing::Bezier,
+        };
+        let table = SurfaceTable::<f64, 8, 33>::new(smoothing, 33).unwrap();
+        let (mut samples, mut normals) = (
+            vec![Vec3::default(); 33 * 33],
+            vec![Vec3::default(); 33 * 33],
+        );
         sheet
-            .patch()
-            .unwrap()
-            .sample_grid(33, 33, &mut samples)
+            .draw(&table, &table, &mut samples, &mut normals)
             .unwrap();
         let deepest = samples
             .iter()
             .map(|p| 0.5 - p.length())
             .fold(f64::NEG_INFINITY, f64::max);
-        let top = sheet.patch().unwrap().eval(0.5, 0.5).y;
-        (deepest, top)
+        (deepest, samples[16 * 33 + 16].y)
     };
     let (particles, _) = drape(Touch::Particles);
-    let (deepest, top) = drape(Touch::Drawn(Smoothing::Bezier));
-    eprintln!(
-        "drawn patch inside the sphere: {deepest:.4} m (particle contacts: {particles:.4} m)"
-    );
-    assert!(deepest <= 0.01 * 0.5, "{deepest}");
-    // It rests on the sphere: its middle is on the top, not fallen off or floating.
-    assert!((top - 0.5).abs() < 0.02, "{top}");
+    for smoothing in [Smoothing::Bezier, Smoothing::NaturalSpline] {
+        let (deepest, top) = drape(Touch::Drawn(smoothing));
+        eprintln!(
+            "{smoothing:?} drawn surface inside the sphere: {deepest:.4} m (particle contacts on \
+             the patch: {particles:.4} m)"
+        );
+        assert!(deepest <= 0.01 * 0.5, "{smoothing:?} {deepest}");
+        // It rests on the sphere: its middle is on the top, not fallen off or floating.
+        assert!((top - 0.5).abs() < 0.02, "{smoothing:?} {top}");
+    }
 }
 
 /// A hoop (a loop of 12 particles drawn as a closed B-spline) hung on a thin nail through

@@ -13,6 +13,7 @@ mod flatten;
 mod integrators;
 mod report;
 mod ropes;
+mod sails;
 mod samplers;
 mod stability;
 
