@@ -1,117 +1,117 @@
-//! Sails as PPM images: an 8×8 sail drawn through its particles (a Catmull-Rom surface)
-//! beside a 20×20 sail drawn raw, in wireframe and shaded (Lambert with the surface normals),
-//! both filling against a thin stay (the 8×8 touches it with its drawn surface, the 20×20 with
-//! its particles), and a fleet of 12 sails in one image with the frame time printed.
+//! The boat scene, as PPM frames: gaff-rigged boats on a sea, their sails filled by gusty wind
+//! (`SailWind`, pressure on every facet) and drawn through their particles (a natural spline
+//! surface, C² and through every particle).
 //!
-//! Run: `cargo run --release --example cloth -- OUT_DIR [--size WxH] [--frames N]`
-//! (defaults 640x360 and 6 frames, a quarter second apart). Writes `sail_wire_NNN.ppm`,
-//! `sail_shaded_NNN.ppm` and `fleet_NNN.ppm` into `OUT_DIR` and prints what each frame cost.
+//! - `sail_wire_NNN.ppm` and `sail_shaded_NNN.ppm`: an 8×8 smoothed sail beside a 20×20 raw
+//!   one, each on its boat, wireframe and shaded (Lambert with the surface normals); the 8×8
+//!   sail fills against a thin stay with its drawn surface, the 20×20 one with its particles.
+//! - `fleet_NNN.ppm`: a fleet (25 boats unless `--boats N`) on the sea, each sail drawn at the
+//!   level of detail its distance allows (`lod::surface_segments` at half a pixel).
+//!
+//! Run: `cargo run --release --example cloth -- OUT_DIR [--size WxH] [--frames N] [--boats N]
+//! [--png FILE]` (defaults 640x360, 6 frames a quarter second apart, 25 boats). `--png` also
+//! writes the last frames as one contact sheet (the README's picture is
+//! `cargo run --release --example cloth -- target/boats --png docs/boats.png`). Prints what
+//! each frame cost.
 
 #[path = "common/raster.rs"]
 mod raster;
 
+use std::collections::HashMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::force::Wind;
+use dunas::force::{SailWind, Wind};
 use dunas::spring::Material;
 use dunas::surface::SurfaceTable;
-use dunas::{Cloth, Vec3};
+use dunas::{Cloth, Vec3, lod};
 use dunas::{Settings, Smoothing};
 use raster::{Camera, Image, lambert};
 
 const STEP: f32 = 1.0 / 60.0;
 const STEPS_PER_FRAME: usize = 15;
-/// Points per side of the grid drawn from an 8×8 patch.
+/// The most samples a side of a drawn sail (its table size).
 const DRAWN: usize = 24;
-const MAST: [f32; 3] = [0.35, 0.3, 0.25];
-const CANVAS: [f32; 3] = [235.0, 225.0, 200.0];
+const SMOOTHING: Smoothing = Smoothing::NaturalSpline;
+const MAST: [u8; 3] = [90, 70, 50];
+const CANVAS: [f32; 3] = [240.0, 232.0, 210.0];
+const HULL: [f32; 3] = [170.0, 45.0, 40.0];
+const DECK: [f32; 3] = [200.0, 160.0, 110.0];
+const SKY: [u8; 3] = [160, 200, 235];
+const SEA: [f32; 3] = [30.0, 90.0, 140.0];
+/// Sunlight, from the upper left and behind the camera.
+const LIGHT: [f32; 3] = [0.35, 0.55, -0.75];
 /// A stay downwind of the sail, 5 cm thick (a tenth of the 8×8 sail's particle spacing):
 /// the sail fills against it.
-const STAY: ([f32; 3], [f32; 3], f32) = ([1.6, 0.5, 1.0], [1.6, -4.5, 1.0], 0.05);
-
-fn stay() -> [Collider<Vec3<f32>>; 1] {
-    let (a, b, r) = STAY;
-    [
-        Collider::capsule(Vec3::new(a[0], a[1], a[2]), Vec3::new(b[0], b[1], b[2]), r)
-            .and_then(|c| c.with_friction(0.3, 0.2))
-            .expect("a valid stay"),
-    ]
-}
+const STAY: ([f32; 3], [f32; 3], f32) = ([1.7, 4.6, 0.75], [1.7, 0.4, 0.75], 0.05);
 
 struct Args {
     out: PathBuf,
     width: usize,
     height: usize,
     frames: usize,
+    boats: usize,
+    png: Option<PathBuf>,
 }
 
 fn parse_args() -> Result<Args, String> {
     let mut args = std::env::args().skip(1);
     let mut out = None;
-    let (mut width, mut height, mut frames) = (640, 360, 6);
+    let mut png = None;
+    let (mut width, mut height, mut frames, mut boats) = (640, 360, 6, 25);
+    let number = |v: Option<String>, what: &str| -> Result<usize, String> {
+        v.and_then(|v| v.parse().ok())
+            .filter(|&n| n > 0)
+            .ok_or(format!("{what} needs a positive number"))
+    };
     while let Some(a) = args.next() {
         match a.as_str() {
             "--size" => {
                 let v = args.next().ok_or("--size needs WxH")?;
                 let (w, h) = v
                     .split_once('x')
-                    .ok_or(format!("--size: expected WxH, got {v}"))?;
-                width = w.parse().map_err(|_| format!("--size: bad width {w}"))?;
-                height = h.parse().map_err(|_| format!("--size: bad height {h}"))?;
-                if !(16..=8192).contains(&width) || !(16..=8192).contains(&height) {
-                    return Err("--size: each side must be 16 to 8192".into());
-                }
+                    .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+                    .filter(|&(w, h): &(usize, usize)| w >= 32 && h >= 32)
+                    .ok_or("--size needs WxH, each at least 32")?;
+                (width, height) = (w, h);
             }
-            "--frames" => {
-                let v = args.next().ok_or("--frames needs a number")?;
-                frames = v.parse().map_err(|_| format!("--frames: bad number {v}"))?;
-                if !(1..=10_000).contains(&frames) {
-                    return Err("--frames: 1 to 10000".into());
-                }
-            }
-            _ if a.starts_with("--") => return Err(format!("unknown option {a}")),
-            _ => out = Some(PathBuf::from(a)),
+            "--frames" => frames = number(args.next(), "--frames")?,
+            "--boats" => boats = number(args.next(), "--boats")?,
+            "--png" => png = Some(PathBuf::from(args.next().ok_or("--png needs a file")?)),
+            other if out.is_none() && !other.starts_with('-') => out = Some(PathBuf::from(other)),
+            other => return Err(format!("unknown argument {other}")),
         }
     }
-    let out = out.ok_or("usage: cloth OUT_DIR [--size WxH] [--frames N]")?;
     Ok(Args {
-        out,
+        out: out
+            .ok_or("usage: cloth OUT_DIR [--size WxH] [--frames N] [--boats N] [--png FILE]")?,
         width,
         height,
         frames,
+        boats,
+        png,
     })
 }
 
-/// A 3 m × 4 m sail on a mast along its first column, its top row on the gaff, 2 kg in all.
-/// Spring stiffness does not change with the grid (a membrane), so both sails are the same
-/// cloth; wind drag is spread over the particles.
+/// A gaff-rigged sail, 3 m on the boom and 4 m on the mast, 2 kg in all: its luff on the mast
+/// (column 0), its head on the gaff (row 0), its foot on the boom (the last row), its leech
+/// free. Spring stiffness does not change with the grid (a membrane), so sails of any size are
+/// the same cloth. The wind blows along +z with a gust every 3 s, from `phase` seconds.
 fn sail<const U: usize, const V: usize>(
     wind_speed: f32,
-) -> (Cloth<Vec3<f32>, U, V>, Wind<Vec3<f32>>) {
+    phase: f32,
+) -> (Cloth<Vec3<f32>, U, V>, SailWind<f32, U>) {
     let settings = Settings {
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 0.3,
         ..Settings::default()
     };
-    let materials = [
-        Material {
-            stiffness: 900.0,
-            damping: 0.6,
-        },
-        Material {
-            stiffness: 300.0,
-            damping: 0.2,
-        },
-        Material {
-            stiffness: 60.0,
-            damping: 0.05,
-        },
-    ];
+    let materials = [(900.0, 0.6), (300.0, 0.2), (60.0, 0.05)]
+        .map(|(stiffness, damping)| Material { stiffness, damping });
     let mut cloth = Cloth::rectangle(
-        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.0, 4.5, 0.0),
         Vec3::new(3.0, 0.0, 0.0),
         Vec3::new(0.0, -4.0, 0.0),
         2.0,
@@ -121,90 +121,131 @@ fn sail<const U: usize, const V: usize>(
     .expect("valid sail");
     cloth.pin_column(0).expect("column in range");
     cloth.pin_row(0).expect("row in range");
-    let mut wind = Wind::still(3.0 / (U * V) as f32);
-    wind.velocity = Vec3::new(0.0, 0.0, wind_speed);
-    wind.gust = Vec3::new(0.0, 0.0, wind_speed);
-    wind.gust_start = 0.5;
-    wind.gust_length = 1.0;
-    (cloth, wind)
+    cloth.pin_row(V - 1).expect("row in range");
+    let mut air = Wind::still(0.02);
+    air.velocity = Vec3::new(0.0, 0.0, wind_speed);
+    air.gust = Vec3::new(0.0, 0.0, 0.8 * wind_speed);
+    air.gust_start = phase;
+    air.gust_length = 1.5;
+    air.gust_every = 3.0;
+    (cloth, SailWind::new(air, 0.7).expect("valid wind"))
 }
 
 fn arr(p: Vec3<f32>) -> [f32; 3] {
     [p.x, p.y, p.z]
 }
 
+fn shade(normal: [f32; 3], base: [f32; 3]) -> [f32; 3] {
+    let l = Vec3::new(LIGHT[0], LIGHT[1], LIGHT[2]);
+    lambert(normal, arr(l.normalize().unwrap_or(l)), base)
+}
+
+/// The sky, the sea below the horizon at `horizon` (pixels from the top), darker towards the
+/// viewer, with swell lines that move with time `t`.
+fn seascape(w: usize, h: usize, horizon: f32, t: f32) -> Image {
+    let mut img = Image::new(w, h, SKY);
+    for y in horizon.max(0.0) as usize..h {
+        let near = (y as f32 - horizon) / (h as f32 - horizon).max(1.0);
+        let k = 1.0 - 0.45 * near;
+        let c = SEA.map(|c| (c * k + 40.0 * (1.0 - near)) as u8);
+        img.line([0.0, y as f32], [w as f32, y as f32], c);
+    }
+    // Swell: crests that bunch up towards the horizon.
+    for n in 1..14 {
+        let d = n as f32 + (t * 0.4).fract();
+        let y = horizon + (h as f32 - horizon) * (1.0 - 1.0 / (0.35 * d + 1.0)) * 1.25;
+        let amp = 1.0 + 0.35 * d;
+        let light = SEA.map(|c| (c * 1.35 + 30.0).min(255.0) as u8);
+        let mut prev = [0.0, y];
+        for x in (0..=w).step_by(8) {
+            let p = [
+                x as f32,
+                y + amp * (x as f32 * 0.05 / amp + t * 1.5 + n as f32).sin(),
+            ];
+            img.line(prev, p, light);
+            prev = p;
+        }
+    }
+    img.clear_depth();
+    img
+}
+
+/// A hull (flat-shaded triangles, a deck and two sides down to the waterline) and its mast,
+/// boom and gaff, through `cam`. The boat's bow points along +x, its mast at the origin.
+fn draw_boat(img: &mut Image, cam: &Camera) {
+    let v = |x: f32, y: f32, z: f32| [x, y, z];
+    let (bow, mid_port, mid_star) = (v(4.4, 0.45, 0.0), v(1.6, 0.5, -0.95), v(1.6, 0.5, 0.95));
+    let (stern_port, stern_star) = (v(-1.0, 0.55, -0.75), v(-1.0, 0.55, 0.75));
+    let (keel_bow, keel_mid, keel_stern) = (v(3.9, 0.0, 0.0), v(1.6, 0.0, 0.0), v(-0.8, 0.0, 0.0));
+    let faces = [
+        ([bow, mid_port, mid_star], DECK),
+        ([mid_port, stern_port, stern_star], DECK),
+        ([mid_port, stern_star, mid_star], DECK),
+        ([bow, mid_port, keel_bow], HULL),
+        ([mid_port, keel_mid, keel_bow], HULL),
+        ([mid_port, stern_port, keel_mid], HULL),
+        ([stern_port, keel_stern, keel_mid], HULL),
+        ([bow, mid_star, keel_bow], HULL),
+        ([mid_star, keel_mid, keel_bow], HULL),
+        ([mid_star, stern_star, keel_mid], HULL),
+        ([stern_star, keel_stern, keel_mid], HULL),
+        ([stern_port, stern_star, keel_stern], HULL),
+    ];
+    for (tri, base) in faces {
+        let [a, b, c] = tri.map(|p| Vec3::new(p[0], p[1], p[2]));
+        let n = (b - a).cross(c - a).normalize().unwrap_or_default();
+        let color = shade(arr(n), base);
+        img.triangle(tri.map(|p| cam.project(p)), [color; 3]);
+    }
+    for (a, b) in [
+        ([0.0, 0.5, 0.0], [0.0, 5.2, 0.0]), // mast
+        ([0.0, 0.5, 0.0], [3.1, 0.5, 0.0]), // boom
+        ([0.0, 4.5, 0.0], [3.1, 4.5, 0.0]), // gaff
+    ] {
+        let (a, b) = (cam.project(a), cam.project(b));
+        let width = (cam.scale / 40.0).clamp(0.0, 2.0) as i32;
+        for dx in -width..=width {
+            let shift = |p: [f32; 3]| [p[0] + dx as f32, p[1], p[2] - 0.01];
+            img.line_3d(shift(a), shift(b), MAST);
+        }
+    }
+}
+
 /// Draws a `nu × nv` grid of points (with normals for shading) through `camera`.
-fn draw_grid(
+fn draw_sail(
     img: &mut Image,
     cam: &Camera,
-    pos: &[Vec3<f32>],
-    nor: &[Vec3<f32>],
-    nu: usize,
-    nv: usize,
+    (pos, nor): (&[Vec3<f32>], &[Vec3<f32>]),
+    (nu, nv): (usize, usize),
     shaded: bool,
 ) {
-    let light = {
-        let l = Vec3::new(0.4f32, 0.8, -0.45);
-        arr(l.normalize().unwrap_or(l))
-    };
     let screen: Vec<[f32; 3]> = pos.iter().map(|&p| cam.project(arr(p))).collect();
-    for j in 0..nv - 1 {
-        for i in 0..nu - 1 {
-            let k = [
-                j * nu + i,
-                j * nu + i + 1,
-                (j + 1) * nu + i,
-                (j + 1) * nu + i + 1,
-            ];
-            if shaded {
-                let c = |k: usize| lambert(arr(nor[k]), light, CANVAS);
+    let ink = [40, 40, 40];
+    let flat = |k: usize| [screen[k][0], screen[k][1]];
+    for j in 0..nv {
+        for i in 0..nu {
+            let k = j * nu + i;
+            if !shaded {
+                if i + 1 < nu {
+                    img.line(flat(k), flat(k + 1), ink);
+                }
+                if j + 1 < nv {
+                    img.line(flat(k), flat(k + nu), ink);
+                }
+                continue;
+            }
+            if i + 1 < nu && j + 1 < nv {
+                let q = [k, k + 1, k + nu, k + nu + 1];
+                let c = |k: usize| shade(arr(nor[k]), CANVAS);
                 img.triangle(
-                    [screen[k[0]], screen[k[1]], screen[k[2]]],
-                    [c(k[0]), c(k[1]), c(k[2])],
+                    [screen[q[0]], screen[q[1]], screen[q[2]]],
+                    [c(q[0]), c(q[1]), c(q[2])],
                 );
                 img.triangle(
-                    [screen[k[1]], screen[k[3]], screen[k[2]]],
-                    [c(k[1]), c(k[3]), c(k[2])],
-                );
-            } else {
-                let w = [40, 40, 40];
-                img.line(
-                    [screen[k[0]][0], screen[k[0]][1]],
-                    [screen[k[1]][0], screen[k[1]][1]],
-                    w,
-                );
-                img.line(
-                    [screen[k[0]][0], screen[k[0]][1]],
-                    [screen[k[2]][0], screen[k[2]][1]],
-                    w,
+                    [screen[q[1]], screen[q[3]], screen[q[2]]],
+                    [c(q[1]), c(q[3]), c(q[2])],
                 );
             }
-        }
-    }
-    if !shaded {
-        let w = [40, 40, 40];
-        for i in 0..nu - 1 {
-            let (a, b) = (screen[(nv - 1) * nu + i], screen[(nv - 1) * nu + i + 1]);
-            img.line([a[0], a[1]], [b[0], b[1]], w);
-        }
-        for j in 0..nv - 1 {
-            let (a, b) = (screen[j * nu + nu - 1], screen[(j + 1) * nu + nu - 1]);
-            img.line([a[0], a[1]], [b[0], b[1]], w);
-        }
-    }
-    // The mast, and the stay.
-    let m = MAST.map(|c| (c * 255.0) as u8);
-    for ((top, foot), width) in [
-        (([0.0, 0.5, 0.0], [0.0, -4.5, 0.0]), 1),
-        ((STAY.0, STAY.1), 0),
-    ] {
-        let (top, foot) = (cam.project(top), cam.project(foot));
-        for dx in -width..=width {
-            img.line(
-                [top[0] + dx as f32, top[1]],
-                [foot[0] + dx as f32, foot[1]],
-                m,
-            );
         }
     }
 }
@@ -221,6 +262,67 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
         .collect()
 }
 
+/// A boat of the fleet: its sail and wind, where it sails (x across, z away from the
+/// camera, metres) and its heading's yaw.
+struct Boat {
+    sail: Cloth<Vec3<f32>, 8, 8>,
+    wind: SailWind<f32, 8>,
+    at: [f32; 2],
+    yaw: f32,
+}
+
+/// The fleet on a grid of lanes, staggered, from 16 m away and 9 m more a row.
+fn fleet(boats: usize) -> Vec<Boat> {
+    let per_row = (boats as f32).sqrt().ceil() as usize;
+    (0..boats)
+        .map(|k| {
+            let (col, row) = (k % per_row, k / per_row);
+            let (sail, wind) = sail::<8, 8>(4.0 + (k % 5) as f32 * 0.5, k as f32 * 0.37);
+            let across = (col as f32 - (per_row - 1) as f32 / 2.0) * 9.0 + (row % 2) as f32 * 4.5;
+            Boat {
+                sail,
+                wind,
+                at: [across, 16.0 + row as f32 * 9.0],
+                yaw: 0.45 + 0.08 * ((k * 7) % 5) as f32,
+            }
+        })
+        .collect()
+}
+
+/// The horizon's height on screen and the fleet camera's focal length, pixels.
+fn fleet_view(h: usize) -> (f32, f32) {
+    (h as f32 * 0.3, h as f32 * 1.6)
+}
+
+/// A weak-perspective camera for an object `at` (x across, z away): its own scale, placed
+/// where a pinhole 6 m above the sea would see it; nearer objects draw over farther ones.
+fn fleet_camera(w: usize, h: usize, at: [f32; 2], yaw: f32) -> Camera {
+    let (horizon, focal) = fleet_view(h);
+    let eye_height = 6.0;
+    let scale = focal / at[1];
+    Camera {
+        yaw,
+        pitch: 0.12,
+        scale,
+        center: [w as f32 / 2.0 + at[0] * scale, horizon + eye_height * scale],
+        depth: at[1] * 100.0,
+    }
+}
+
+/// A sail's drawn points and normals, and its counts a direction.
+type Drawn = (Vec<Vec3<f32>>, Vec<Vec3<f32>>, usize, usize);
+
+/// The fleet on the sea in a `w × h` image, each boat with its drawn sail.
+fn draw_fleet(w: usize, h: usize, boats: &[Boat], drawn: &[Drawn], time: f32) -> Image {
+    let mut img = seascape(w, h, fleet_view(h).0, time);
+    for (boat, (p, n, nu, nv)) in boats.iter().zip(drawn) {
+        let cam = fleet_camera(w, h, boat.at, boat.yaw);
+        draw_boat(&mut img, &cam);
+        draw_sail(&mut img, &cam, (p, n), (*nu, *nv), true);
+    }
+    img
+}
+
 fn main() {
     let args = match parse_args() {
         Ok(a) => a,
@@ -234,35 +336,42 @@ fn main() {
         std::process::exit(1);
     }
     let (w, h) = (args.width, args.height);
-    let (mut small, mut small_wind) = sail::<8, 8>(5.0);
-    let (mut big, mut big_wind) = sail::<20, 20>(5.0);
-    let stay = stay();
-    let on_surface =
-        Contacts::new(&stay, 0.01, Touch::Drawn(Smoothing::CatmullRom)).expect("valid");
-    // The 8×8 sails are drawn through their particles (Catmull-Rom), DRAWN points a side.
-    let table = SurfaceTable::<f32, 8, DRAWN>::new(Smoothing::CatmullRom, DRAWN).expect("2..=N");
+    let (mut small, mut small_wind) = sail::<8, 8>(5.0, 0.5);
+    let (mut big, mut big_wind) = sail::<20, 20>(5.0, 0.5);
+    let (a, b, r) = STAY;
+    let stay = [
+        Collider::capsule(Vec3::new(a[0], a[1], a[2]), Vec3::new(b[0], b[1], b[2]), r)
+            .and_then(|c| c.with_friction(0.3, 0.2))
+            .expect("a valid stay"),
+    ];
+    let on_surface = Contacts::new(&stay, 0.01, Touch::Drawn(SMOOTHING)).expect("valid");
     let on_particles = Contacts::new(&stay, 0.01, Touch::Particles).expect("valid");
-    let mut fleet: Vec<_> = (0..12)
-        .map(|k| sail::<8, 8>(3.0 + 0.4 * k as f32))
-        .collect();
+    // Sail tables by sample count, built once and shared by every sail.
+    let mut tables: HashMap<usize, SurfaceTable<f32, 8, DRAWN>> = HashMap::new();
+    let mut table = |n: usize| -> SurfaceTable<f32, 8, DRAWN> {
+        tables
+            .entry(n)
+            .or_insert_with(|| SurfaceTable::new(SMOOTHING, n).expect("2..=DRAWN"))
+            .clone()
+    };
+    let full = table(DRAWN);
+    let mut boats = fleet(args.boats);
     let (mut pos, mut nor) = (
         vec![Vec3::default(); DRAWN * DRAWN],
         vec![Vec3::default(); DRAWN * DRAWN],
     );
-    let half = |left: bool| Camera {
-        yaw: 0.6,
-        pitch: 0.25,
-        scale: h as f32 / 6.5,
-        center: [
-            if left {
-                w as f32 * 0.25
-            } else {
-                w as f32 * 0.75
-            } - h as f32 * 0.15,
-            h as f32 * 0.18,
-        ],
+    let side = |left: bool| Camera {
+        yaw: 0.75,
+        pitch: 0.2,
+        scale: h as f32 / 8.0,
+        center: [w as f32 * if left { 0.22 } else { 0.68 }, h as f32 * 0.72],
+        depth: 0.0,
     };
-    println!("frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of 12: simulate + draw (ms)");
+    println!(
+        "frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of {}: a step + surfaces (ms) | mean samples a sail | raster (ms)",
+        args.boats
+    );
+    let mut last = Vec::new();
     for frame in 0..args.frames {
         let (mut t_small, mut t_big) = (0.0, 0.0);
         for _ in 0..STEPS_PER_FRAME {
@@ -271,7 +380,7 @@ fn main() {
                 .step_touching(STEP, &mut small_wind, &on_surface)
                 .expect("the sail stays stable");
             small
-                .draw(&table, &table, &mut pos, &mut nor)
+                .draw(&full, &full, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             t_small += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -279,62 +388,87 @@ fn main() {
                 .expect("the sail stays stable");
             t_big += t.elapsed().as_secs_f64();
         }
+        let time = frame as f32 * STEPS_PER_FRAME as f32 * STEP;
         let big_nor = grid_normals::<20, 20>(big.positions());
+        let mut pair = Vec::new();
         for shaded in [false, true] {
-            let mut img = Image::new(w, h, [150, 190, 225]);
-            draw_grid(&mut img, &half(true), &pos, &nor, DRAWN, DRAWN, shaded);
-            draw_grid(
-                &mut img,
-                &half(false),
-                big.positions(),
-                &big_nor,
-                20,
-                20,
-                shaded,
-            );
+            let mut img = seascape(w, h, h as f32 * 0.3, time);
+            for (left, grid, normals, n) in [
+                (true, &pos[..], &nor[..], DRAWN),
+                (false, big.positions(), &big_nor[..], 20),
+            ] {
+                draw_boat(&mut img, &side(left));
+                draw_sail(&mut img, &side(left), (grid, normals), (n, n), shaded);
+            }
             let name = if shaded { "sail_shaded" } else { "sail_wire" };
             let path = args.out.join(format!("{name}_{frame:03}.ppm"));
             img.write_ppm(&path)
                 .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
+            pair.push(img);
         }
-        // The fleet: 12 sails simulated and drawn into one image.
-        let t = Instant::now();
-        let mut img = Image::new(w, h, [150, 190, 225]);
-        for (k, (cloth, wind)) in fleet.iter_mut().enumerate() {
+        // The fleet: every sail stepped, then drawn at its level of detail (half a pixel).
+        // Its cost is that of a 60 Hz game frame: one step and one drawing of every sail.
+        let (mut stepping, mut drawing) = (0.0, 0.0);
+        let mut drawn = Vec::with_capacity(boats.len());
+        let mut samples = 0;
+        for boat in &mut boats {
+            let t = Instant::now();
             for _ in 0..STEPS_PER_FRAME {
-                cloth
-                    .step_with(STEP, &mut *wind)
+                boat.sail
+                    .step_with(STEP, &mut boat.wind)
                     .expect("the sail stays stable");
             }
-            cloth
-                .draw(&table, &table, &mut pos, &mut nor)
+            stepping += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let cam = fleet_camera(w, h, boat.at, boat.yaw);
+            let tolerance = 0.5 / cam.scale;
+            let (su, sv) = lod::surface_segments(boat.sail.position_array(), SMOOTHING, tolerance)
+                .expect("the sail is in range");
+            let (nu, nv) = ((su + 1).min(DRAWN), (sv + 1).min(DRAWN));
+            let (mut p, mut n) = (
+                vec![Vec3::default(); nu * nv],
+                vec![Vec3::default(); nu * nv],
+            );
+            samples += boat
+                .sail
+                .draw(&table(nu), &table(nv), &mut p, &mut n)
                 .expect("buffers hold the grid");
-            let (col, row) = ((k % 4) as f32, (k / 4) as f32);
-            let cam = Camera {
-                yaw: 0.6,
-                pitch: 0.25,
-                scale: h as f32 / 16.0,
-                center: [
-                    w as f32 * (0.1 + 0.23 * col),
-                    h as f32 * (0.08 + 0.31 * row),
-                ],
-            };
-            draw_grid(&mut img, &cam, &pos, &nor, DRAWN, DRAWN, true);
+            drawing += t.elapsed().as_secs_f64();
+            drawn.push((p, n, nu, nv));
         }
-        let fleet_ms = t.elapsed().as_secs_f64() * 1e3;
+        let fleet_ms = (stepping / STEPS_PER_FRAME as f64 + drawing) * 1e3;
+        let t = Instant::now();
+        let img = draw_fleet(w, h, &boats, &drawn, time);
+        let raster_ms = t.elapsed().as_secs_f64() * 1e3;
         let path = args.out.join(format!("fleet_{frame:03}.ppm"));
         img.write_ppm(&path)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
         let per = |s: f64| s * 1e6 / STEPS_PER_FRAME as f64;
         println!(
-            "{frame:5} | {:19.1} | {:15.1} | {fleet_ms:.2}",
+            "{frame:5} | {:21.1} | {:15.1} | {fleet_ms:35.2} | {:19.0} | {raster_ms:.1}",
             per(t_small),
-            per(t_big)
+            per(t_big),
+            samples as f64 / boats.len() as f64,
         );
+        pair.push(draw_fleet(2 * w, h, &boats, &drawn, time));
+        last = pair;
     }
-    let reach = small.positions()[63].z;
+    if let Some(png) = &args.png {
+        // The contact sheet: the two sails shaded and in wireframe, the fleet below.
+        let mut sheet = Image::new(2 * w, 2 * h, [0, 0, 0]);
+        if let [wire, shaded, fleet] = &last[..] {
+            sheet.paste(shaded, 0, 0);
+            sheet.paste(wire, w, 0);
+            sheet.paste(fleet, 0, h);
+        }
+        sheet
+            .write_png(png)
+            .unwrap_or_else(|e| panic!("cannot write {}: {e}", png.display()));
+        println!("wrote the contact sheet {}", png.display());
+    }
+    let reach = small.positions()[27].z;
     println!(
-        "wrote {} frames of {w}x{h} into {} (8x8 sail's free corner is {reach:.2} m downwind)",
+        "wrote {} frames of {w}x{h} into {} (the 8x8 sail bellies {reach:.2} m downwind)",
         args.frames,
         args.out.display()
     );

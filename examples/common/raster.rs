@@ -1,5 +1,5 @@
 //! A small software rasteriser for the host examples: lines, z-buffered Gouraud triangles, a
-//! simple camera, and binary PPM (P6) output.
+//! simple camera, and binary PPM (P6) and PNG output.
 #![allow(dead_code)]
 
 use std::io;
@@ -61,6 +61,24 @@ impl Image {
         }
     }
 
+    /// A line between two screen points with depth, depth-tested like the triangles.
+    pub fn line_3d(&mut self, a: [f32; 3], b: [f32; 3], color: [u8; 3]) {
+        let steps = (b[0] - a[0])
+            .abs()
+            .max((b[1] - a[1]).abs())
+            .ceil()
+            .min(4096.0) as i64;
+        for s in 0..=steps {
+            let t = if steps == 0 {
+                0.0
+            } else {
+                s as f32 / steps as f32
+            };
+            let at = |k: usize| a[k] + (b[k] - a[k]) * t;
+            self.put(at(0).round() as i64, at(1).round() as i64, at(2), color);
+        }
+    }
+
     /// A triangle with per-vertex colours, depth-tested (smaller `z` is nearer).
     pub fn triangle(&mut self, v: [[f32; 3]; 3], colors: [[f32; 3]; 3]) {
         let area =
@@ -111,6 +129,34 @@ impl Image {
         }
     }
 
+    /// Forgets every depth, so that what was drawn so far is background.
+    pub fn clear_depth(&mut self) {
+        self.depth.fill(f32::INFINITY);
+    }
+
+    /// Pastes `other` with its top-left corner at `(x, y)` (clipped).
+    pub fn paste(&mut self, other: &Image, x: usize, y: usize) {
+        for j in 0..other.height.min(self.height.saturating_sub(y)) {
+            for i in 0..other.width.min(self.width.saturating_sub(x)) {
+                let (a, b) = (
+                    3 * ((y + j) * self.width + x + i),
+                    3 * (j * other.width + i),
+                );
+                self.rgb[a..a + 3].copy_from_slice(&other.rgb[b..b + 3]);
+            }
+        }
+    }
+
+    /// Writes the image as a PNG.
+    pub fn write_png(&self, path: &Path) -> io::Result<()> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let mut encoder = png::Encoder::new(file, self.width as u32, self.height as u32);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(io::Error::other)?;
+        writer.write_image_data(&self.rgb).map_err(io::Error::other)
+    }
+
     /// The image as a binary PPM (P6).
     pub fn to_ppm(&self) -> Vec<u8> {
         let mut out = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
@@ -130,6 +176,8 @@ pub struct Camera {
     pub pitch: f32,
     pub scale: f32,
     pub center: [f32; 2],
+    /// Added to every depth: orders the objects of a scene drawn with a camera each.
+    pub depth: f32,
 }
 
 impl Camera {
@@ -144,7 +192,7 @@ impl Camera {
         [
             self.center[0] + self.scale * x,
             self.center[1] - self.scale * y,
-            depth,
+            depth + self.depth,
         ]
     }
 
