@@ -17,7 +17,6 @@
 #[path = "common/raster.rs"]
 mod raster;
 
-use std::collections::HashMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -346,14 +345,11 @@ fn main() {
     ];
     let on_surface = Contacts::new(&stay, 0.01, Touch::Drawn(SMOOTHING)).expect("valid");
     let on_particles = Contacts::new(&stay, 0.01, Touch::Particles).expect("valid");
-    // Sail tables by sample count, built once and shared by every sail.
-    let mut tables: HashMap<usize, SurfaceTable<f32, 8, DRAWN>> = HashMap::new();
-    let mut table = |n: usize| -> SurfaceTable<f32, 8, DRAWN> {
-        tables
-            .entry(n)
-            .or_insert_with(|| SurfaceTable::new(SMOOTHING, n).expect("2..=DRAWN"))
-            .clone()
-    };
+    // Sail tables for every sample count, built once and shared by every sail.
+    let tables: Vec<SurfaceTable<f32, 8, DRAWN>> = (2..=DRAWN)
+        .map(|n| SurfaceTable::new(SMOOTHING, n).expect("2..=DRAWN"))
+        .collect();
+    let table = |n: usize| &tables[n - 2];
     let full = table(DRAWN);
     let mut boats = fleet(args.boats);
     let (mut pos, mut nor) = (
@@ -380,7 +376,7 @@ fn main() {
                 .step_touching(STEP, &mut small_wind, &on_surface)
                 .expect("the sail stays stable");
             small
-                .draw(&full, &full, &mut pos, &mut nor)
+                .draw(full, full, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             t_small += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -431,7 +427,7 @@ fn main() {
             );
             samples += boat
                 .sail
-                .draw(&table(nu), &table(nv), &mut p, &mut n)
+                .draw(table(nu), table(nv), &mut p, &mut n)
                 .expect("buffers hold the grid");
             drawing += t.elapsed().as_secs_f64();
             drawn.push((p, n, nu, nv));

@@ -267,16 +267,13 @@ impl<'a, P: Point> Contacts<'a, P> {
         (h, lag): (P::Scalar, P::Scalar),
     ) {
         // The points whose boxes hold the cells: the particles, or a natural spline's
-        // control points (it passes through the particles but bulges past them).
-        let natural = self.touch == Touch::Drawn(Smoothing::NaturalSpline);
-        let hull_points = |pos: &[[P; U]; V]| {
-            let mut points = *pos;
-            if natural {
-                crate::surface::natural_grid(&mut points);
-            }
-            points
+        // control net (it passes through the particles but bulges past them).
+        let net = |pos: &[[P; U]; V]| {
+            let mut net = *pos;
+            crate::surface::natural_grid(&mut net);
+            net
         };
-        let mut hulls = hull_points(pos);
+        let mut controls = (self.touch == Touch::Drawn(Smoothing::NaturalSpline)).then(|| net(pos));
         let (pos, vel, inv_mass) = (
             pos.as_flattened_mut(),
             vel.as_flattened_mut(),
@@ -299,8 +296,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for cell in 0..(U - 1) * (V - 1) {
                 let (cu, cv) = (cell % (U - 1), cell / (U - 1));
-                let Some(hull) = surface.cell_bounds(hulls.as_flattened(), (cu, cv), overshoot)
-                else {
+                let points = controls.as_ref().map_or(&*pos, |c| c.as_flattened());
+                let Some(hull) = surface.cell_bounds(points, (cu, cv), overshoot) else {
                     continue;
                 };
                 if !hull.overlaps(&reach) {
@@ -327,9 +324,9 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
                 if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
                     self.report(k, given);
-                    if natural {
+                    if let Some(c) = &mut controls {
                         let grid = pos.as_chunks::<U>().0;
-                        hulls = hull_points(&core::array::from_fn(|j| grid[j]));
+                        *c = net(&core::array::from_fn(|j| grid[j]));
                     }
                 }
             }

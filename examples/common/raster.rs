@@ -45,20 +45,11 @@ impl Image {
 
     /// A line drawn over everything (no depth test), clipped to the image.
     pub fn line(&mut self, a: [f32; 2], b: [f32; 2], color: [u8; 3]) {
-        let steps = (b[0] - a[0])
-            .abs()
-            .max((b[1] - a[1]).abs())
-            .ceil()
-            .min(4096.0) as i64;
-        for s in 0..=steps {
-            let t = if steps == 0 {
-                0.0
-            } else {
-                s as f32 / steps as f32
-            };
-            let (x, y) = (a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t);
-            self.put(x.round() as i64, y.round() as i64, f32::NEG_INFINITY, color);
-        }
+        self.line_3d(
+            [a[0], a[1], f32::NEG_INFINITY],
+            [b[0], b[1], f32::NEG_INFINITY],
+            color,
+        );
     }
 
     /// A line between two screen points with depth, depth-tested like the triangles.
@@ -75,7 +66,9 @@ impl Image {
                 s as f32 / steps as f32
             };
             let at = |k: usize| a[k] + (b[k] - a[k]) * t;
-            self.put(at(0).round() as i64, at(1).round() as i64, at(2), color);
+            // Equal depths stay exact (an infinite one would interpolate to NaN).
+            let z = if a[2] == b[2] { a[2] } else { at(2) };
+            self.put(at(0).round() as i64, at(1).round() as i64, z, color);
         }
     }
 
