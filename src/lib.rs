@@ -70,7 +70,8 @@
 //! stops with a `compile_error!`. On bare-metal targets (`target_os = "none"`) float math
 //! always comes from `libm`, so the default features build for a microcontroller too.
 #![no_std]
-#![forbid(unsafe_code)]
+// One FPU instruction (`math.rs`, the Cortex-M4F's square root) is the only unsafe code.
+#![deny(unsafe_code)]
 #![deny(missing_docs)]
 // Numeric kernels index several arrays in step, as the formulas they implement do.
 #![allow(clippy::needless_range_loop)]

@@ -20,26 +20,29 @@ pub trait Meter {
 /// What a run reports.
 pub struct Report {
     pub checksum: u32,
-    /// The step and the curve of the costliest frame, in instructions (0 on the host).
+    /// The step and the drawing of the costliest frame, in instructions (0 on the host).
     pub step_instructions: u32,
     pub sample_instructions: u32,
     pub substeps: u16,
     /// Frames in which a collider pushed the rope, where the scene has colliders.
     pub touching_frames: Option<u32>,
-    /// The mean of the frames' instruction counts (step and curve).
+    /// How far a sail's middle stands downwind of its mast (millimetres), for a sail.
+    pub belly_mm: Option<i32>,
+    /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
 }
 
 /// FNV-1a over the raw bits of every coordinate: equal only for bit-identical states.
-pub fn checksum<S: Scalar>(points: &[Vec2<S>], bits: impl Fn(S) -> u32) -> u32 {
+pub fn checksum<S: Scalar>(
+    coordinates: impl IntoIterator<Item = S>,
+    bits: impl Fn(S) -> u32,
+) -> u32 {
     let mut h: u32 = 0x811c_9dc5;
-    for p in points {
-        for c in [p.x, p.y] {
-            for b in bits(c).to_le_bytes() {
-                h ^= b as u32;
-                h = h.wrapping_mul(0x0100_0193);
-            }
+    for c in coordinates {
+        for b in bits(c).to_le_bytes() {
+            h ^= b as u32;
+            h = h.wrapping_mul(0x0100_0193);
         }
     }
     h
@@ -76,6 +79,46 @@ pub fn catapult_rope<S: Scalar>() -> Result<Rope<Vec2<S>, 8>, Error> {
 /// Room for the curve: Catmull-Rom over 7 spans, each halved twice, is 29 points.
 pub const CURVE: usize = 33;
 
+/// The instruction counts of [`STEPS`] metered frames.
+pub struct Costs {
+    /// The step and the drawing of the costliest frame.
+    pub step: u32,
+    pub sample: u32,
+    /// The mean frame (step and drawing).
+    pub mean: u32,
+    /// Substeps of the last step.
+    pub substeps: u16,
+}
+
+/// Runs [`STEPS`] frames of `step` (1/60 s of the scene) then `sample` (what the frame
+/// draws), metering each.
+pub fn meter_frames<T, S: Scalar>(
+    meter: &mut impl Meter,
+    scene: &mut T,
+    mut step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
+    mut sample: impl FnMut(&mut T) -> Result<(), Error>,
+) -> Result<Costs, Error> {
+    let mut costs = Costs {
+        step: 0,
+        sample: 0,
+        mean: 0,
+        substeps: 0,
+    };
+    let mut total: u64 = 0;
+    for _ in 0..STEPS {
+        let (stepped, n) = meter.count(|| step(scene));
+        let (sampled, m) = meter.count(|| sample(scene));
+        costs.substeps = stepped?.substeps;
+        sampled?;
+        total += u64::from(n + m);
+        if n + m > costs.step + costs.sample {
+            (costs.step, costs.sample) = (n, m);
+        }
+    }
+    costs.mean = (total / STEPS as u64) as u32;
+    Ok(costs)
+}
+
 /// Runs [`STEPS`] frames of `step` (which advances the rope by 1/60 s) and a Catmull-Rom
 /// curve of the rope, metering each; returns the report of the last frame's state, the ASCII
 /// frame drawn with `decorate` (what else the scene shows).
@@ -86,38 +129,47 @@ pub fn run_frames<S: Scalar>(
     mut step: impl FnMut(&mut Rope<Vec2<S>, 8>) -> Result<dunas::system::StepInfo<S>, Error>,
     decorate: impl FnOnce(&mut dunas::ascii::Canvas, &dunas::ascii::View<Vec2<S>>),
 ) -> Result<Report, Error> {
-    let mut curve = [Vec2::new(S::ZERO, S::ZERO); CURVE];
-    let (mut step_instructions, mut sample_instructions, mut substeps) = (0, 0, 0);
-    let mut total: u64 = 0;
-    for _ in 0..STEPS {
-        let (stepped, n) = meter.count(|| step(rope));
-        let (sampled, m) = meter.count(|| rope.sample(Smoothing::CatmullRom, &mut curve));
-        substeps = stepped?.substeps;
-        sampled?;
-        total += u64::from(n + m);
-        if n + m > step_instructions + sample_instructions {
-            (step_instructions, sample_instructions) = (n, m);
-        }
-    }
-    let mut frame = [b' '; W * H];
-    let mut canvas = dunas::ascii::Canvas::new(&mut frame, W, H)?;
+    let mut scene = (rope, [Vec2::new(S::ZERO, S::ZERO); CURVE]);
+    let costs = meter_frames(
+        meter,
+        &mut scene,
+        |(rope, _)| step(rope),
+        |(rope, curve)| rope.sample(Smoothing::CatmullRom, curve).map(drop),
+    )?;
+    let (rope, curve) = scene;
     let view = dunas::ascii::View::new(
         Vec2::new(S::from_i16(-60), S::from_i16(6)),
         S::from_i16(3),
         S::from_i16(6),
     )?;
-    decorate(&mut canvas, &view);
-    canvas.polyline(&view, &curve, b'#');
-    canvas.points(&view, rope.positions(), b'o');
-    Ok(Report {
-        checksum: checksum(rope.positions(), bits),
-        step_instructions,
-        sample_instructions,
-        substeps,
+    let frame = ascii_frame(|canvas| {
+        decorate(canvas, &view);
+        canvas.polyline(&view, &curve, b'#');
+        canvas.points(&view, rope.positions(), b'o');
+    })?;
+    let coordinates = rope.positions().iter().flat_map(|p| [p.x, p.y]);
+    Ok(report(checksum(coordinates, bits), &costs, frame))
+}
+
+/// The final ASCII frame, as `draw` paints it on a blank canvas.
+pub fn ascii_frame(draw: impl FnOnce(&mut dunas::ascii::Canvas)) -> Result<[u8; W * H], Error> {
+    let mut frame = [b' '; W * H];
+    draw(&mut dunas::ascii::Canvas::new(&mut frame, W, H)?);
+    Ok(frame)
+}
+
+/// The report of a run: its checksum, its costs and its final frame.
+pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
+    Report {
+        checksum,
+        step_instructions: costs.step,
+        sample_instructions: costs.sample,
+        substeps: costs.substeps,
         touching_frames: None,
-        mean_frame_instructions: (total / STEPS as u64) as u32,
+        belly_mm: None,
+        mean_frame_instructions: costs.mean,
         frame,
-    })
+    }
 }
 
 pub fn q16_bits(x: Q16) -> u32 {
@@ -216,6 +268,17 @@ mod board {
 
     /// `key=value` in decimal, or in hex (8 digits) with `hex`.
     fn put_number(key: &[u8], value: u32, hex: bool) {
+        put_line(key, b"", value, hex);
+    }
+
+    /// `key=value` in decimal, with a `-` for a negative value.
+    fn put_signed(key: &[u8], value: i32) {
+        let sign: &[u8] = if value < 0 { b"-" } else { b"" };
+        put_line(key, sign, value.unsigned_abs(), false);
+    }
+
+    /// `key=` then `sign` then the digits of `value`, and a newline.
+    fn put_line(key: &[u8], sign: &[u8], value: u32, hex: bool) {
         let base = if hex { 16 } else { 10 };
         let mut digits = [0u8; 10];
         let (mut v, mut n) = (value, 0);
@@ -230,6 +293,7 @@ mod board {
         }
         put(key);
         put(b"=");
+        put(sign);
         digits[..n].reverse();
         put(&digits[..n]);
         put(b"\n");
@@ -305,6 +369,9 @@ mod board {
                 if let Some(n) = r.touching_frames {
                     put_number(b"touching_frames", n, false);
                 }
+                if let Some(mm) = r.belly_mm {
+                    put_signed(b"belly_mm", mm);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -368,6 +435,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             println!("checksum={:08x}", r.checksum);
             if let Some(n) = r.touching_frames {
                 println!("touching_frames={n}");
+            }
+            if let Some(mm) = r.belly_mm {
+                println!("belly_mm={mm}");
             }
         }
         Err(e) => {
