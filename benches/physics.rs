@@ -204,6 +204,33 @@ fn surfaces(c: &mut Criterion) {
     g.finish();
 }
 
+/// Breaking: a 60 Hz rope step with and without snap limits on its springs (the check runs
+/// once a step), and a cut of its drawn 64-point Catmull-Rom curve by a swipe across it.
+fn breaking(c: &mut Criterion) {
+    use dunas::breaking::Piece;
+    use dunas::spring::Snap;
+    let mut g = c.benchmark_group("breaking");
+    let plain = rope::<8, 7>(AnyIntegrator::SymplecticEuler);
+    let mut snapping = plain.clone();
+    snapping.set_snap(Snap::Tension(1.0e6)).unwrap();
+    bench_on(&mut g, "rope8_step", &plain, |r| {
+        r.step(1.0 / 60.0).unwrap()
+    });
+    bench_on(&mut g, "rope8_step_snap", &snapping, |r| {
+        r.step(1.0 / 60.0).unwrap()
+    });
+    let (mut points, mut pieces) = ([Vec2::<f32>::default(); 64], [Piece::EMPTY; 8]);
+    let n = plain
+        .draw(Smoothing::CatmullRom, &mut points, &mut pieces)
+        .unwrap();
+    let aim = points[pieces[0].points.end / 2];
+    let (from, to) = (aim + Vec2::new(-5.0, 20.0), aim + Vec2::new(5.0, -20.0));
+    bench_on(&mut g, "rope8_cut64", &plain, |r| {
+        r.cut(&points, &pieces[..n], from, to).unwrap()
+    });
+    g.finish();
+}
+
 fn sizes(_: &mut Criterion) {
     use core::mem::size_of;
     println!(
@@ -230,6 +257,6 @@ criterion_group! {
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_millis(800))
         .sample_size(30);
-    targets = sizes, steps, frames, contacts, surfaces
+    targets = sizes, steps, frames, contacts, surfaces, breaking
 }
 criterion_main!(benches);

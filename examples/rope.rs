@@ -11,35 +11,18 @@
 
 #[path = "common/rope_scene.rs"]
 mod rope_scene;
+#[path = "common/term.rs"]
+mod term;
 
-use std::io::{self, IsTerminal, Write};
+use std::io::{self, IsTerminal};
 use std::time::{Duration, Instant};
 
-use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyModifiers};
-use crossterm::{cursor, execute, queue, style, terminal};
 use dunas::FixedTimestep;
 use rope_scene::Scene;
+use term::{Screen, wants_to_quit};
 
 const STEP: f32 = 1.0 / 60.0;
 const FRAME: Duration = Duration::from_millis(33);
-
-/// Restores the terminal however the demo ends.
-struct Screen;
-
-impl Screen {
-    fn enter() -> io::Result<Screen> {
-        terminal::enable_raw_mode()?;
-        execute!(io::stdout(), terminal::EnterAlternateScreen, cursor::Hide)?;
-        Ok(Screen)
-    }
-}
-
-impl Drop for Screen {
-    fn drop(&mut self) {
-        let _ = execute!(io::stdout(), cursor::Show, terminal::LeaveAlternateScreen);
-        let _ = terminal::disable_raw_mode();
-    }
-}
 
 fn seconds_from_args() -> Result<f32, String> {
     let mut args = std::env::args().skip(1);
@@ -65,29 +48,10 @@ fn seconds_from_args() -> Result<f32, String> {
     Ok(seconds)
 }
 
-fn wants_to_quit(deadline: Instant) -> io::Result<bool> {
-    while let Some(left) = deadline.checked_duration_since(Instant::now()) {
-        if !event::poll(left)? {
-            break;
-        }
-        if let Event::Key(KeyEvent {
-            code, modifiers, ..
-        }) = event::read()?
-        {
-            let ctrl_c = code == KeyCode::Char('c') && modifiers.contains(KeyModifiers::CONTROL);
-            if ctrl_c || code == KeyCode::Char('q') || code == KeyCode::Esc {
-                return Ok(true);
-            }
-        }
-    }
-    Ok(false)
-}
-
 fn animate(seconds: f32) -> io::Result<()> {
     let mut scene = Scene::new();
     let mut clock = FixedTimestep::new(STEP, 0.25).expect("valid clock");
-    let _screen = Screen::enter()?;
-    let mut out = io::stdout();
+    let screen = Screen::enter()?;
     let start = Instant::now();
     let mut last = start;
     while start.elapsed().as_secs_f32() < seconds {
@@ -96,18 +60,8 @@ fn animate(seconds: f32) -> io::Result<()> {
             scene.step(STEP);
         }
         last = now;
-        queue!(out, cursor::MoveTo(0, 0))?;
         let title = format!(" dunas rope demo   t = {:4.1} s   (q quits)", scene.time());
-        queue!(
-            out,
-            style::Print(&title),
-            terminal::Clear(terminal::ClearType::UntilNewLine),
-            style::Print("\r\n")
-        )?;
-        for line in scene.render(true) {
-            queue!(out, style::Print(line), style::Print("\r\n"))?;
-        }
-        out.flush()?;
+        screen.show(std::iter::once(title).chain(scene.render(true)))?;
         if wants_to_quit(now + FRAME)? {
             break;
         }

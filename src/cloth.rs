@@ -74,14 +74,12 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
                     + dv * P::Scalar::ratio(j as u32, (V - 1) as u32)
             })
         });
-        let springs = GridSprings {
-            rest_u: step_u.length(),
-            rest_v: step_v.length(),
-            rest_diagonals: [(step_u + step_v).length(), (step_u - step_v).length()],
-            structural: materials[0],
-            shear: materials[1],
-            bending: materials[2],
-        };
+        let springs = GridSprings::new(
+            step_u.length(),
+            step_v.length(),
+            [(step_u + step_v).length(), (step_u - step_v).length()],
+            materials,
+        );
         let w = P::Scalar::ratio((U * V) as u32, 1) / mass;
         let system = MassSpring::new(positions, [[w; U]; V], springs, settings)?;
         Ok(Cloth { system })

@@ -91,6 +91,8 @@ mod math;
 
 mod aabb;
 pub mod ascii;
+pub mod body;
+pub mod breaking;
 mod catenary;
 mod cloth;
 pub mod collider;

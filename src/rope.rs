@@ -29,7 +29,7 @@ use crate::{Error, Point, Scalar, Settings};
 /// (measured 5e-4), are rounding noise in the stiffest spring mode, too fast and too small
 /// to see (`tests/rope.rs`, `a_resting_f32_rope_stays_still`).
 ///
-/// State size in `f32` 2D: `20·N + 8·CAP + 44` bytes; 268 for 8 particles.
+/// State size in `f32` 2D: `20·N + 16·CAP + 52` bytes; 340 for 8 particles.
 ///
 /// ```
 /// use dunas::prelude::*;

@@ -217,14 +217,40 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         check_points(particles)?;
         let pieces = match method {
             Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(*particles)),
-            Smoothing::BSpline => Pieces::Cubic(bspline_spans(particles), K - 1),
-            Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(particles), K - 1),
+            Smoothing::BSpline => Pieces::Cubic(bspline_spans(particles, K), K - 1),
+            Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(particles, K), K - 1),
             Smoothing::NaturalSpline => {
                 let mut controls = *particles;
-                natural_controls(&mut controls, false);
-                Pieces::Cubic(bspline_spans(&controls), K - 1)
+                natural_open(&mut controls, K);
+                Pieces::Cubic(bspline_spans(&controls, K), K - 1)
             }
-            Smoothing::Polyline => Pieces::Straight(segments(particles), K - 1),
+            Smoothing::Polyline => Pieces::Straight(segments(particles, K), K - 1),
+        };
+        Ok(Smoothed { pieces, method })
+    }
+
+    /// The open curve through the first `n` particles (`2 ≤ n ≤ K`, clamped): a piece of a
+    /// broken rope. One Bézier repeats the `n`-th particle up to degree `K - 1`.
+    pub(crate) fn open_first(
+        method: Smoothing,
+        particles: &[P; K],
+        n: usize,
+    ) -> Result<Self, Error> {
+        let n = n.clamp(2.min(K), K);
+        let mut row = *particles;
+        for p in &mut row[n..] {
+            *p = particles[n - 1];
+        }
+        check_points(&row)?;
+        let pieces = match method {
+            Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(row)),
+            Smoothing::BSpline => Pieces::Cubic(bspline_spans(&row, n), n - 1),
+            Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(&row, n), n - 1),
+            Smoothing::NaturalSpline => {
+                natural_open(&mut row, n);
+                Pieces::Cubic(bspline_spans(&row, n), n - 1)
+            }
+            Smoothing::Polyline => Pieces::Straight(segments(&row, n), n - 1),
         };
         Ok(Smoothed { pieces, method })
     }
@@ -418,12 +444,28 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
 /// negated second difference of the particles (0 at open ends). Solving for the offset keeps
 /// every intermediate within the particles' differences (fixed point stays in range).
 pub(crate) fn natural_controls<P: Point, const K: usize>(points: &mut [P; K], closed: bool) {
+    if !closed {
+        return natural_open(points, K);
+    }
     let mut offset = curvature(points, closed);
     for e in &mut offset {
         *e = -*e;
     }
     solve_tridiagonal(&mut offset, closed);
     for (p, e) in points.iter_mut().zip(offset) {
+        *p += e;
+    }
+}
+
+/// [`natural_controls`] of the first `n ≤ K` particles of an open row (the rest untouched).
+fn natural_open<P: Point, const K: usize>(points: &mut [P; K], n: usize) {
+    let n = n.min(K);
+    let mut offset = [P::default(); K];
+    for i in 1..n.saturating_sub(1) {
+        offset[i] = (points[i] - points[i - 1]) - (points[i + 1] - points[i]);
+    }
+    solve_open(&mut offset, n);
+    for (p, e) in points[..n].iter_mut().zip(offset) {
         *p += e;
     }
 }
@@ -485,20 +527,32 @@ where
         }
         return;
     }
-    if K < 3 {
-        *r = [T::default(); K];
+    solve_open::<T, S, K>(r, K);
+}
+
+/// The open case of [`solve_tridiagonal`] over the first `n ≤ K` entries (Thomas'
+/// algorithm, `x[0] = x[n-1] = 0`); later entries are left alone.
+fn solve_open<T, S: Scalar, const K: usize>(r: &mut [T; K], n: usize)
+where
+    T: Copy + Default + Add<Output = T> + Sub<Output = T> + Mul<S, Output = T>,
+{
+    let n = n.min(K);
+    if n < 3 {
+        for x in &mut r[..n] {
+            *x = T::default();
+        }
         return;
     }
     // Forward: gamma[i] = 1 / (4 - gamma[i-1]), r[i] = (r[i] - r[i-1]) · gamma[i].
     let mut gamma = [S::ZERO; K];
     r[0] = T::default();
-    for i in 1..K - 1 {
+    for i in 1..n - 1 {
         gamma[i] = S::ONE / (S::from_i16(4) - gamma[i - 1]);
         r[i] = (r[i] - r[i - 1]) * gamma[i];
     }
     // Back: x[i] = r[i] - gamma[i] · x[i+1].
-    r[K - 1] = T::default();
-    for i in (1..K - 1).rev() {
+    r[n - 1] = T::default();
+    for i in (1..n - 1).rev() {
         r[i] = r[i] - r[i + 1] * gamma[i];
     }
 }
@@ -511,21 +565,21 @@ fn knot<P: Point>(p: P, q: P, r: P) -> P {
     q + (p - q) * sixth + (r - q) * sixth
 }
 
-/// The `K - 1` B-spline spans of an open row (the last entry is unused); phantom ends
-/// reflected through the end particles clamp the curve to them.
-fn bspline_spans<P: Point, const K: usize>(d: &[P; K]) -> [Bezier<P, 4>; K] {
+/// The `n - 1` B-spline spans of the first `n` of an open row (later entries unused);
+/// phantom ends reflected through the end particles clamp the curve to them.
+fn bspline_spans<P: Point, const K: usize>(d: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
     let third = P::Scalar::ratio(1, 3);
     let two_thirds = P::Scalar::ratio(2, 3);
     let knot_at = |i: usize| -> P {
-        if i == 0 || i == K - 1 {
+        if i == 0 || i + 1 >= n {
             d[i]
         } else {
             knot(d[i - 1], d[i], d[i + 1])
         }
     };
     core::array::from_fn(|i| {
-        if i + 1 >= K {
-            return Bezier::new_unchecked([d[K - 1]; 4]);
+        if i + 1 >= n {
+            return Bezier::new_unchecked([d[n - 1]; 4]);
         }
         let step = d[i + 1] - d[i];
         Bezier::new_unchecked([
@@ -537,13 +591,13 @@ fn bspline_spans<P: Point, const K: usize>(d: &[P; K]) -> [Bezier<P, 4>; K] {
     })
 }
 
-/// The `K - 1` Catmull-Rom spans of an open row (the last entry is unused).
-fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K]) -> [Bezier<P, 4>; K] {
+/// The `n - 1` Catmull-Rom spans of the first `n` of an open row (later entries unused).
+fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
     let sixth = P::Scalar::ratio(1, 6);
     let third = P::Scalar::ratio(1, 3);
     core::array::from_fn(|i| {
-        if i + 1 >= K {
-            return Bezier::new_unchecked([p[K - 1]; 4]);
+        if i + 1 >= n {
+            return Bezier::new_unchecked([p[n - 1]; 4]);
         }
         // Tangent at a particle: (next - previous) / 2; a phantom end reflected through
         // the last particle makes it (next - this) at the ends.
@@ -552,7 +606,7 @@ fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K]) -> [Bezier<P, 4>; K] 
         } else {
             (p[i + 1] - p[i - 1]) * sixth
         };
-        let in_handle = if i + 2 >= K {
+        let in_handle = if i + 2 >= n {
             (p[i + 1] - p[i]) * third
         } else {
             (p[i + 2] - p[i]) * sixth
@@ -561,9 +615,9 @@ fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K]) -> [Bezier<P, 4>; K] 
     })
 }
 
-/// The `K - 1` straight segments of an open row (the last entry is unused).
-fn segments<P: Point, const K: usize>(p: &[P; K]) -> [Bezier<P, 2>; K] {
-    core::array::from_fn(|i| Bezier::new_unchecked([p[i], p[(i + 1).min(K - 1)]]))
+/// The `n - 1` straight segments of the first `n` of an open row (later entries unused).
+fn segments<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 2>; K] {
+    core::array::from_fn(|i| Bezier::new_unchecked([p[i], p[(i + 1).min(n - 1)]]))
 }
 
 #[cfg(all(test, dunas_floats))]
@@ -613,7 +667,7 @@ mod tests {
     #[test]
     fn bspline_joins_are_c2() {
         let p = zigzag();
-        let s = bspline_spans(&p);
+        let s = bspline_spans(&p, p.len());
         for i in 0..p.len() - 2 {
             let (a, b) = (*s[i].points(), *s[i + 1].points());
             assert_eq!(a[3], b[0]);
@@ -668,7 +722,7 @@ mod tests {
     #[test]
     fn catmull_rom_joins_are_c1() {
         let p = zigzag();
-        let s = catmull_rom_spans(&p);
+        let s = catmull_rom_spans(&p, p.len());
         for i in 0..p.len() - 2 {
             let (a, b) = (*s[i].points(), *s[i + 1].points());
             assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);

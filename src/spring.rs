@@ -17,6 +17,63 @@ pub struct Spring<S> {
     pub b: u16,
     /// Rest length, in coordinate units.
     pub rest: S,
+    /// The length past which the spring snaps (from its [`Snap`]); 0 for never.
+    pub snap_at: S,
+    /// `true` once the spring has snapped or been cut: it pulls no more, for good.
+    pub broken: bool,
+}
+
+/// When a spring snaps: never, past a stretch ratio (`length / rest`, `> 1`), or past a
+/// static tension (`stiffness · (length - rest)`, in force units, `> 0`). Both come down to
+/// a length, checked once a step after the substeps: a snap costs no square root unless the
+/// spring is within reach of it (a Manhattan-distance test first).
+///
+/// ```
+/// use dunas::spring::Snap;
+/// assert!(Snap::Stretch(1.5f32).check().is_ok());
+/// assert!(Snap::Stretch(1.0f32).check().is_err()); // a ratio ≤ 1 would snap at rest
+/// assert!(Snap::Tension(0.0f32).check().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Snap<S> {
+    /// The spring never snaps (the default).
+    #[default]
+    Never,
+    /// Snaps once longer than `ratio · rest` (`ratio > 1`).
+    Stretch(S),
+    /// Snaps once its static tension `k · (length - rest)` passes this force (`> 0`).
+    Tension(S),
+}
+
+impl<S: Scalar> Snap<S> {
+    /// Checks the limit.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a stretch ratio that is not finite and above 1, or a
+    /// tension that is not finite and positive.
+    pub fn check(self) -> Result<Self, Error> {
+        match self {
+            Snap::Never => Ok(self),
+            Snap::Stretch(ratio) if ratio > S::ONE && ratio.is_finite() => Ok(self),
+            Snap::Tension(force) if force > S::ZERO && force.is_finite() => Ok(self),
+            _ => Err(Error::InvalidParameter),
+        }
+    }
+
+    /// The length past which a spring of rest length `rest` and `material` snaps; 0 for
+    /// never (and for a limit beyond the format's range).
+    fn length(self, rest: S, material: Material<S>) -> S {
+        let at = match self {
+            Snap::Never => S::ZERO,
+            Snap::Stretch(ratio) => rest * ratio,
+            Snap::Tension(force) => rest + force / material.stiffness,
+        };
+        if at.is_finite() && at <= S::SAFE_RANGE {
+            at
+        } else {
+            S::ZERO
+        }
+    }
 }
 
 /// Stiffness and damping shared by a group of springs. Written with named fields, so the
@@ -58,15 +115,25 @@ pub trait Topology<S: Scalar> {
     fn for_each_spring(&self, f: impl FnMut(usize, usize, S, Material<S>));
     /// The number of springs.
     fn spring_count(&self) -> usize;
+    /// Breaks every spring that has passed its [`Snap`] length at positions `x` (indexed as
+    /// in [`for_each_spring`](Self::for_each_spring)); returns how many broke. Topologies
+    /// that cannot break return 0.
+    fn snap<P: Point<Scalar = S>>(&mut self, x: &[P]) -> usize {
+        let _ = x;
+        0
+    }
 }
 
-/// An explicit list of up to `CAP` springs of one material, stored inline.
+/// An explicit list of up to `CAP` springs of one material, stored inline. Springs snap
+/// ([`Snap`], for the material or one spring) and are cut, but are never removed: a broken
+/// spring keeps its slot and its index, and pulls no more.
 ///
-/// Memory: `8 × CAP + 12` bytes in `f32`. Duplicate checks make building `O(CAP²)`, once.
+/// Memory: `16 × CAP + 20` bytes in `f32`. Duplicate checks make building `O(CAP²)`, once.
 #[derive(Clone, Debug)]
 pub struct Springs<S, const CAP: usize> {
     list: heapless::Vec<Spring<S>, CAP, u16>,
     material: Material<S>,
+    snap: Snap<S>,
 }
 
 impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
@@ -76,6 +143,7 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         Springs {
             list: heapless::Vec::new(),
             material,
+            snap: Snap::Never,
         }
     }
 
@@ -89,14 +157,78 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         self.material
     }
 
-    /// Changes the shared material.
+    /// Changes the shared material (the springs' [`Snap`] lengths follow it).
     ///
     /// # Errors
     /// As [`Material::check`]; the old material stays.
     pub fn set_material(&mut self, material: Material<S>) -> Result<(), Error> {
         material.check()?;
         self.material = material;
+        let snap = self.snap;
+        for s in self.list.iter_mut() {
+            s.snap_at = snap.length(s.rest, material);
+        }
         Ok(())
+    }
+
+    /// The material's [`Snap`]: the limit of every spring, and of springs connected later.
+    pub fn snap_limit(&self) -> Snap<S> {
+        self.snap
+    }
+
+    /// Sets the material's [`Snap`] for every spring (overriding [`set_spring_snap`]) and
+    /// for springs connected later.
+    ///
+    /// # Errors
+    /// As [`Snap::check`]; nothing changes then.
+    ///
+    /// [`set_spring_snap`]: Self::set_spring_snap
+    pub fn set_snap(&mut self, snap: Snap<S>) -> Result<(), Error> {
+        self.snap = snap.check()?;
+        for s in self.list.iter_mut() {
+            s.snap_at = snap.length(s.rest, self.material);
+        }
+        Ok(())
+    }
+
+    /// Sets the [`Snap`] of spring `index` alone (a frayed strand, a weak link).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] for a missing spring; as [`Snap::check`]. Nothing changes
+    /// on an error.
+    pub fn set_spring_snap(&mut self, index: usize, snap: Snap<S>) -> Result<(), Error> {
+        let snap = snap.check()?;
+        let len = self.list.len();
+        let material = self.material;
+        let s = self
+            .list
+            .get_mut(index)
+            .ok_or(Error::IndexOutOfRange { index, len })?;
+        s.snap_at = snap.length(s.rest, material);
+        Ok(())
+    }
+
+    /// Breaks every spring from a particle at or below `i` to one above it: what a cut
+    /// between particles `i` and `i + 1` of a chain severs (the chain's spring and any hub
+    /// or bending spring across it). Returns how many broke.
+    pub fn cut_across(&mut self, i: usize) -> usize {
+        let mut cut = 0;
+        for s in self.list.iter_mut() {
+            let (lo, hi) = (usize::from(s.a.min(s.b)), usize::from(s.a.max(s.b)));
+            if !s.broken && lo <= i && i < hi {
+                s.broken = true;
+                cut += 1;
+            }
+        }
+        cut
+    }
+
+    /// Whether a live (unbroken) spring joins `a` and `b`.
+    pub fn joins(&self, a: usize, b: usize) -> bool {
+        self.list.iter().any(|s| {
+            let (sa, sb) = (usize::from(s.a), usize::from(s.b));
+            !s.broken && ((sa, sb) == (a, b) || (sa, sb) == (b, a))
+        })
     }
 
     /// Multiplies every rest length by `factor` (used to calibrate a rope's drawn length).
@@ -152,6 +284,8 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
                 a: a as u16,
                 b: b as u16,
                 rest,
+                snap_at: self.snap.length(rest, self.material),
+                broken: false,
             })
             .map_err(|_| Error::CapacityExceeded { capacity: CAP })
     }
@@ -309,18 +443,47 @@ pub(crate) fn check_rest<S: Scalar>(a: usize, b: usize, rest: S) -> Result<(), E
 impl<S: Scalar, const CAP: usize> Topology<S> for Springs<S, CAP> {
     #[inline]
     fn for_each_spring(&self, mut f: impl FnMut(usize, usize, S, Material<S>)) {
-        for s in self.list.iter() {
+        for s in self.list.iter().filter(|s| !s.broken) {
             f(s.a as usize, s.b as usize, s.rest, self.material);
         }
     }
     fn spring_count(&self) -> usize {
         self.list.len()
     }
+    fn snap<P: Point<Scalar = S>>(&mut self, x: &[P]) -> usize {
+        let mut snapped = 0;
+        for s in self.list.iter_mut() {
+            if s.broken || s.snap_at <= S::ZERO {
+                continue;
+            }
+            let (Some(&pa), Some(&pb)) = (x.get(usize::from(s.a)), x.get(usize::from(s.b))) else {
+                continue;
+            };
+            if past(pa, pb, s.snap_at) {
+                s.broken = true;
+                snapped += 1;
+            }
+        }
+        snapped
+    }
+}
+
+/// Whether `a` and `b` are farther apart than `limit`: the Manhattan distance (never less
+/// than the true one) rules most springs out with no square root.
+#[inline]
+fn past<P: Point>(a: P, b: P, limit: P::Scalar) -> bool {
+    let d = b - a;
+    let mut manhattan = P::Scalar::ZERO;
+    for axis in 0..P::DIM {
+        manhattan += d.coord(axis).abs();
+    }
+    manhattan > limit && d.length() > limit
 }
 
 /// The springs of a `U × V` cloth grid, implied by the grid instead of stored: structural
 /// (to the 4 neighbours), shear (diagonals) and bending (two apart), each class with its own
-/// material and one rest length per direction. 8×8 has 306 springs and costs 60 bytes.
+/// material, [`Snap`] limit and one rest length per direction. A torn spring is one bit (six
+/// a particle); 8×8 has 306 springs and costs 152 bytes in `f32`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GridSprings<S, const U: usize, const V: usize> {
     /// Rest length between neighbours along a row (`u`).
@@ -336,40 +499,140 @@ pub struct GridSprings<S, const U: usize, const V: usize> {
     pub shear: Material<S>,
     /// Bending springs resist folding.
     pub bending: Material<S>,
+    /// When the structural, shear and bending springs tear.
+    pub snap: [Snap<S>; 3],
+    /// Torn springs: bit `f` of `(i, j)` is family `f`'s spring from particle `(i, j)` (see
+    /// [`FAMILIES`](Self::FAMILIES)).
+    torn: [[u8; U]; V],
 }
 
 impl<S: Scalar, const U: usize, const V: usize> GridSprings<S, U, V> {
     /// The number of springs: `V(U-1) + U(V-1) + 2(U-1)(V-1) + V(U-2) + U(V-2)`.
     pub const COUNT: usize =
         V * (U - 1) + U * (V - 1) + 2 * (U - 1) * (V - 1) + V * (U - 2) + U * (V - 2);
-}
 
-impl<S: Scalar, const U: usize, const V: usize> Topology<S> for GridSprings<S, U, V> {
-    fn for_each_spring(&self, mut f: impl FnMut(usize, usize, S, Material<S>)) {
+    /// The six families of springs, each from particle `(i, j)` to `(i + di, j + dj)`, and
+    /// its class (0 structural, 1 shear, 2 bending).
+    pub const FAMILIES: [(isize, usize, usize); 6] = [
+        (1, 0, 0),
+        (0, 1, 0),
+        (1, 1, 1),
+        (-1, 1, 1),
+        (2, 0, 2),
+        (0, 2, 2),
+    ];
+
+    /// The springs of a grid with these rest lengths and materials, none torn, none tearing.
+    pub fn new(rest_u: S, rest_v: S, rest_diagonals: [S; 2], materials: [Material<S>; 3]) -> Self {
+        GridSprings {
+            rest_u,
+            rest_v,
+            rest_diagonals,
+            structural: materials[0],
+            shear: materials[1],
+            bending: materials[2],
+            snap: [Snap::Never; 3],
+            torn: [[0; U]; V],
+        }
+    }
+
+    /// Family `f`'s rest length and material.
+    fn family(&self, f: usize) -> (S, Material<S>) {
         let two = S::ONE + S::ONE;
-        // Family by family, each the springs from particle (i, j) to (i + di, j + dj) that
-        // fit in the grid: one call site, so the physics' closure inlines.
-        let families = [
-            (1, 0, self.rest_u, self.structural),
-            (0, 1, self.rest_v, self.structural),
-            (1, 1, self.rest_diagonals[0], self.shear),
-            (-1, 1, self.rest_diagonals[1], self.shear),
-            (2, 0, self.rest_u * two, self.bending),
-            (0, 2, self.rest_v * two, self.bending),
-        ];
-        for (di, dj, rest, material) in families {
+        match f {
+            0 => (self.rest_u, self.structural),
+            1 => (self.rest_v, self.structural),
+            2 => (self.rest_diagonals[0], self.shear),
+            3 => (self.rest_diagonals[1], self.shear),
+            4 => (self.rest_u * two, self.bending),
+            _ => (self.rest_v * two, self.bending),
+        }
+    }
+
+    /// Calls `f(family, i, j, a, b)` for every spring of the grid, torn or not.
+    #[inline]
+    fn each(mut f: impl FnMut(usize, usize, usize, usize, usize)) {
+        for (family, &(di, dj, _)) in Self::FAMILIES.iter().enumerate() {
             let columns = usize::from(di < 0)..U.saturating_sub(di.max(0) as usize);
             for j in 0..V.saturating_sub(dj) {
                 for i in columns.clone() {
                     let a = j * U + i;
-                    f(a, (a + dj * U).wrapping_add_signed(di), rest, material);
+                    f(family, i, j, a, (a + dj * U).wrapping_add_signed(di));
                 }
             }
         }
     }
 
+    /// Whether family `f`'s spring from particle `(i, j)` is torn.
+    pub fn is_torn(&self, f: usize, i: usize, j: usize) -> bool {
+        self.torn
+            .get(j)
+            .and_then(|row| row.get(i))
+            .is_some_and(|bits| bits & (1 << f) != 0)
+    }
+
+    /// Tears every spring whose segment, seen along the first two coordinates, crosses the
+    /// segment from `from` to `to` (a swipe across a cloth on the screen); returns how many.
+    pub(crate) fn tear_across<P: Point<Scalar = S>>(
+        &mut self,
+        x: &[P],
+        c: crate::Vec2<S>,
+        d: crate::Vec2<S>,
+    ) -> usize {
+        let mut torn = 0;
+        let flat = |p: P| crate::Vec2::new(p.coord(0), p.coord(1));
+        let mut marks = self.torn;
+        Self::each(|f, i, j, a, b| {
+            if marks[j][i] & (1 << f) == 0
+                && let (Some(&pa), Some(&pb)) = (x.get(a), x.get(b))
+                && crate::breaking::crossing(flat(pa), flat(pb), c, d).is_some()
+            {
+                marks[j][i] |= 1 << f;
+                torn += 1;
+            }
+        });
+        self.torn = marks;
+        torn
+    }
+}
+
+impl<S: Scalar, const U: usize, const V: usize> Topology<S> for GridSprings<S, U, V> {
+    fn for_each_spring(&self, mut f: impl FnMut(usize, usize, S, Material<S>)) {
+        // Family by family: one call site, so the physics' closure inlines.
+        let families: [(S, Material<S>); 6] = core::array::from_fn(|k| self.family(k));
+        Self::each(|family, i, j, a, b| {
+            if self.torn[j][i] & (1 << family) == 0 {
+                let (rest, material) = families[family];
+                f(a, b, rest, material);
+            }
+        });
+    }
     fn spring_count(&self) -> usize {
         Self::COUNT
+    }
+    fn snap<P: Point<Scalar = S>>(&mut self, x: &[P]) -> usize {
+        let limits: [S; 6] = core::array::from_fn(|k| {
+            let (rest, material) = self.family(k);
+            self.snap[Self::FAMILIES[k].2].length(rest, material)
+        });
+        if limits.iter().all(|&l| l <= S::ZERO) {
+            return 0;
+        }
+        let mut torn = 0;
+        let mut marks = self.torn;
+        Self::each(|f, i, j, a, b| {
+            let limit = limits[f];
+            if limit > S::ZERO
+                && marks[j][i] & (1 << f) == 0
+                && let (Some(&pa), Some(&pb)) = (x.get(a), x.get(b))
+                && past(pa, pb, limit)
+            {
+                marks[j][i] |= 1 << f;
+                torn += 1;
+            }
+        });
+        self.torn = marks;
+        torn
     }
 }
 
@@ -429,14 +692,7 @@ mod tests {
             .map(|k| Vec2::new((k % 5) as f32, (k / 5) as f32))
             .collect();
         let explicit = Springs::<f32, 100>::surface_grid(&grid, 5, 4, 2, mat()).unwrap();
-        let implied = GridSprings::<f32, 5, 4> {
-            rest_u: 1.0,
-            rest_v: 1.0,
-            rest_diagonals: [2f32.sqrt(); 2],
-            structural: mat(),
-            shear: mat(),
-            bending: mat(),
-        };
+        let implied = GridSprings::<f32, 5, 4>::new(1.0, 1.0, [2f32.sqrt(); 2], [mat(); 3]);
         let mut pairs = std::vec::Vec::new();
         implied.for_each_spring(|a, b, rest, _| pairs.push((a.min(b), a.max(b), rest)));
         assert_eq!(pairs.len(), explicit.spring_count());

@@ -1,8 +1,9 @@
 //! The mass-spring system: particles and springs, stepped by an integrator in substeps, and
 //! a step that cannot explode.
 
+use crate::body::Body;
 use crate::contact::Contacts;
-use crate::error::{check_index, check_non_negative, check_points};
+use crate::error::{check_index, check_non_negative, check_points, check_positive};
 use crate::force::ForceField;
 use crate::integrator::{Integrator, Model, State, SymplecticEuler};
 use crate::shape::Shape;
@@ -27,6 +28,9 @@ pub struct StepInfo<S> {
     /// (a hand yanked far faster than the rope can follow). Always `false` in floats, whose
     /// overflow is caught as [`Error::Diverged`] instead.
     pub saturated: bool,
+    /// Springs that snapped at the end of the step (their [`Snap`](crate::spring::Snap)
+    /// limits, checked once a step); they stay broken.
+    pub snapped: u16,
 }
 
 /// Particles joined by springs, advanced by an [`Integrator`].
@@ -44,7 +48,8 @@ pub struct MassSpring<P: Point, Sh: Shape, T, I = SymplecticEuler> {
     topology: T,
     time: P::Scalar,
     /// `ω + γ` of the springs alone (see [`stiffness_bound`](Self::stiffness_bound)), kept
-    /// current by every method that changes masses or springs.
+    /// current by every method that changes masses or springs; after springs break it may
+    /// be higher than the springs left need, which is safe.
     spring_rate: P::Scalar,
     /// Substeps per unit of `rate · dt`, from the integrator and the accuracy.
     per_rate: P::Scalar,
@@ -189,6 +194,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         r
     }
 
+    /// The springs, to break some in place. Breaking only lowers the stiffness bound, so the
+    /// bound kept is still safe (a step may take more substeps than the springs left need,
+    /// until masses or springs next change).
+    pub(crate) fn break_springs<R>(&mut self, f: impl FnOnce(&mut T) -> R) -> R {
+        f(&mut self.topology)
+    }
+
     /// Simulated time since creation (seconds).
     #[inline]
     pub fn time(&self) -> P::Scalar {
@@ -225,6 +237,145 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         check_points(&[p])?;
         check_inside(&[p], self.settings.bounds)?;
         Sh::flat_mut(&mut self.state.pos)[i] = p;
+        Ok(())
+    }
+
+    /// Moves particle `i` to `p` as a hand would over the last `dt` seconds: its velocity
+    /// becomes `(p - where it was) / dt`, so the springs' damping and the rope's momentum see
+    /// the hand move (`set_position` teleports at rest). A held (pinned) particle keeps that
+    /// velocity for the next step and stays at `p` through it; call this every frame the
+    /// hand moves. On a free particle it is a teleport with that velocity.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), ..Settings::default() };
+    /// let m = Material { stiffness: 400.0, damping: 2.0 };
+    /// let mut rope: Rope<Vec2<f32>, 8> = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(0.0, -7.0), 1.0, m, settings)?;
+    /// rope.move_pinned(0, Vec2::new(0.1, 0.0), 1.0 / 60.0)?; // the hand moves 6 m/s right
+    /// assert!((rope.velocities()[0].x - 6.0).abs() < 1e-5);
+    /// rope.step(1.0 / 60.0)?;
+    /// assert_eq!(rope.positions()[0], Vec2::new(0.1, 0.0)); // held where the hand is
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a `dt` that is not positive
+    /// and finite; [`Error::NonFinite`] / [`Error::OutOfRange`] for `p` or for the velocity.
+    /// Nothing changes on an error.
+    pub fn move_pinned(&mut self, i: usize, p: P, dt: P::Scalar) -> Result<(), Error> {
+        check_index(i, Sh::LEN)?;
+        check_positive(dt)?;
+        check_points(&[p])?;
+        check_inside(&[p], self.settings.bounds)?;
+        let v = (p - Sh::flat(&self.state.pos)[i]) * (P::Scalar::ONE / dt);
+        check_points(&[v])?;
+        Sh::flat_mut(&mut self.state.pos)[i] = p;
+        Sh::flat_mut(&mut self.state.vel)[i] = v;
+        Ok(())
+    }
+
+    /// Lets go of held particle `i`, giving it inverse mass `inv_mass` (`> 0`) and keeping
+    /// the velocity its hand gave it this frame ([`move_pinned`](Self::move_pinned)), so it
+    /// leaves with the hand's momentum.
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for an `inv_mass` that is not
+    /// positive and finite.
+    pub fn let_go(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
+        check_index(i, Sh::LEN)?;
+        check_positive(inv_mass)?;
+        Sh::flat_mut(&mut self.inv_mass)[i] = inv_mass;
+        self.update_spring_rate();
+        Ok(())
+    }
+
+    /// Hangs a weight of `mass` on free particle `i` (a bob, a penguin, a lantern): the
+    /// particle's mass grows by `mass`, and the substeps follow. Undo it with
+    /// [`release`](Self::release).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a `mass` that is not
+    /// positive and finite, or one that leaves the particle's inverse mass at 0 in the
+    /// format; [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would
+    /// not show).
+    pub fn hang(&mut self, i: usize, mass: P::Scalar) -> Result<(), Error> {
+        check_index(i, Sh::LEN)?;
+        check_positive(mass)?;
+        let w = Sh::flat(&self.inv_mass)[i];
+        if w <= P::Scalar::ZERO {
+            return Err(Error::Pinned { index: i });
+        }
+        let heavier = P::Scalar::ONE / (P::Scalar::ONE / w + mass);
+        if !(heavier > P::Scalar::ZERO && heavier.is_finite()) {
+            return Err(Error::InvalidParameter);
+        }
+        Sh::flat_mut(&mut self.inv_mass)[i] = heavier;
+        self.update_spring_rate();
+        Ok(())
+    }
+
+    /// Takes `mass` off free particle `i` and returns it as a [`Body`] with the particle's
+    /// position and velocity: a hung weight let go (the catapult's penguin). The particle
+    /// keeps the rest of its mass and its velocity, so linear momentum is conserved (to
+    /// rounding); the body then flies on its own ([`Body::fly`]).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`]; [`Error::Pinned`] for a pinned particle;
+    /// [`Error::InvalidParameter`] for a `mass` that is not positive, or not less than the
+    /// particle's own. Nothing changes on an error.
+    pub fn release(&mut self, i: usize, mass: P::Scalar) -> Result<Body<P>, Error> {
+        check_index(i, Sh::LEN)?;
+        check_positive(mass)?;
+        let w = Sh::flat(&self.inv_mass)[i];
+        if w <= P::Scalar::ZERO {
+            return Err(Error::Pinned { index: i });
+        }
+        let left = P::Scalar::ONE / w - mass;
+        let lighter = P::Scalar::ONE / left;
+        if !(left > P::Scalar::ZERO && lighter.is_finite() && lighter > P::Scalar::ZERO) {
+            return Err(Error::InvalidParameter);
+        }
+        Sh::flat_mut(&mut self.inv_mass)[i] = lighter;
+        self.update_spring_rate();
+        Ok(Body {
+            position: Sh::flat(&self.state.pos)[i],
+            velocity: Sh::flat(&self.state.vel)[i],
+            mass,
+        })
+    }
+
+    /// Ties particle `i` to particle `j` of `other` (a rope's end to a point on another rope
+    /// or on a cloth): both move to their mass-weighted mean position and velocity, so the
+    /// pair's momentum is kept (to rounding); a pinned side holds the other where it is.
+    /// Call it every frame after stepping both systems. Both pinned: nothing moves.
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] for a missing particle on either side. Nothing changes then.
+    pub fn weld<Sh2: Shape, T2, I2>(
+        &mut self,
+        i: usize,
+        other: &mut MassSpring<P, Sh2, T2, I2>,
+        j: usize,
+    ) -> Result<(), Error> {
+        check_index(i, Sh::LEN)?;
+        check_index(j, Sh2::LEN)?;
+        let (wa, wb) = (Sh::flat(&self.inv_mass)[i], Sh2::flat(&other.inv_mass)[j]);
+        let (pa, pb) = (Sh::flat(&self.state.pos)[i], Sh2::flat(&other.state.pos)[j]);
+        let (va, vb) = (Sh::flat(&self.state.vel)[i], Sh2::flat(&other.state.vel)[j]);
+        let zero = P::Scalar::ZERO;
+        let (p, v) = match (wa > zero, wb > zero) {
+            (false, false) => return Ok(()),
+            (false, true) => (pa, va),
+            (true, false) => (pb, vb),
+            (true, true) => {
+                let (sa, sb) = (wb / (wa + wb), wa / (wa + wb));
+                (pa * sa + pb * sb, va * sa + vb * sb)
+            }
+        };
+        Sh::flat_mut(&mut self.state.pos)[i] = p;
+        Sh::flat_mut(&mut self.state.vel)[i] = v;
+        Sh2::flat_mut(&mut other.state.pos)[j] = p;
+        Sh2::flat_mut(&mut other.state.vel)[j] = v;
         Ok(())
     }
 
@@ -462,6 +613,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             },
             slow_motion,
             saturated,
+            snapped: self.snap(),
         })
     }
 
@@ -484,7 +636,15 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             simulated: h,
             slow_motion: false,
             saturated,
+            snapped: self.snap(),
         })
+    }
+
+    /// Breaks the springs past their snap lengths (the stiffness bound kept is still safe:
+    /// see [`break_springs`](Self::break_springs)).
+    fn snap(&mut self) -> u16 {
+        let snapped = self.topology.snap(Sh::flat(&self.state.pos));
+        u16::try_from(snapped).unwrap_or(u16::MAX)
     }
 
     /// `n` substeps of `h`, undone if the result is not sane; `Ok(true)` when a `Q16` force
@@ -518,6 +678,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             );
         }
         if self.flush_and_check() {
+            // A held particle ends the step where its hand put it; the hand's velocity
+            // (`move_pinned`) lasted this step, for the springs' damping.
+            for ((x, v), (&w, &before)) in Sh::flat_mut(&mut self.state.pos)
+                .iter_mut()
+                .zip(Sh::flat_mut(&mut self.state.vel))
+                .zip(Sh::flat(&self.inv_mass).iter().zip(Sh::flat(&saved.0.pos)))
+            {
+                if w <= P::Scalar::ZERO {
+                    (*x, *v) = (before, P::default());
+                }
+            }
             Ok(!unsaturated)
         } else {
             (self.state, self.time) = saved;

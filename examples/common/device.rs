@@ -28,6 +28,8 @@ pub struct Report {
     pub touching_frames: Option<u32>,
     /// How far a sail's middle stands downwind of its mast (millimetres), for a sail.
     pub belly_mm: Option<i32>,
+    /// The frame a scripted swipe cut the rope, where the scene cuts (0: it missed).
+    pub cut_frame: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -167,6 +169,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         substeps: costs.substeps,
         touching_frames: None,
         belly_mm: None,
+        cut_frame: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -372,6 +375,9 @@ mod board {
                 if let Some(mm) = r.belly_mm {
                     put_signed(b"belly_mm", mm);
                 }
+                if let Some(n) = r.cut_frame {
+                    put_number(b"cut_frame", n, false);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -438,6 +444,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(mm) = r.belly_mm {
                 println!("belly_mm={mm}");
+            }
+            if let Some(n) = r.cut_frame {
+                println!("cut_frame={n}");
             }
         }
         Err(e) => {
