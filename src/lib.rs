@@ -116,6 +116,7 @@ pub mod scalar;
 mod settings;
 pub mod shape;
 pub mod smooth;
+pub mod spline_rope;
 pub mod spring;
 mod substeps;
 pub mod surface;

@@ -1,0 +1,421 @@
+//! The spline rope against references nobody tuned: the hanging chain's modes (zeros of
+//! J₀), the catenary, free fall, rest, energy, and symplectic Euler's stability limit.
+
+use dunas::Error;
+use dunas::prelude::*;
+use dunas::spline_rope::SplineRope;
+
+const G: f64 = 9.81;
+/// The first three zeros of J₀.
+const J0_ZEROS: [f64; 3] = [
+    2.404_825_557_695_773,
+    5.520_078_110_286_311,
+    8.653_727_912_911_012,
+];
+
+/// J₀ by its power series (exact to rounding for |x| < 12).
+fn j0(x: f64) -> f64 {
+    let (mut term, mut sum) = (1.0, 1.0);
+    for k in 1..60 {
+        term *= -(x * x / 4.0) / (k as f64 * k as f64);
+        sum += term;
+    }
+    sum
+}
+
+fn settings(gravity: f64, drag: f64) -> Settings<Vec2<f64>> {
+    Settings {
+        gravity: Vec2::new(0.0, -gravity),
+        damping: drag,
+        ..Settings::default()
+    }
+}
+
+/// A 1 m, 1 kg rope of `K` control points hanging from the origin, settled (heavy strain
+/// damping and drag) for 8 s, then left with no drag.
+fn hanging<const K: usize>(ea: f64) -> SplineRope<Vec2<f64>, K> {
+    let stretch = Material {
+        stiffness: ea,
+        damping: 0.02 * ea.sqrt(),
+    };
+    let mut rope = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(0.0, -1.0),
+        1.0,
+        stretch,
+        settings(G, 5.0),
+    )
+    .unwrap();
+    for _ in 0..480 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let mut still = settings(G, 0.0);
+    still.accuracy = Accuracy::Balanced;
+    rope.set_settings(still).unwrap();
+    rope
+}
+
+/// The lateral mode `n` (0-based) of the drawn curve: its sideways displacement projected
+/// on the continuum's shape `J₀(j_n·√((L - s)/L))`.
+fn projection<const K: usize>(rope: &SplineRope<Vec2<f64>, K>, n: usize) -> f64 {
+    let mut curve = [Vec2::default(); 201];
+    let count = rope.sample(&mut curve).unwrap();
+    (0..count)
+        .map(|k| {
+            let s = k as f64 / (count - 1) as f64;
+            curve[k].x * j0(J0_ZEROS[n] * (1.0 - s).max(0.0).sqrt())
+        })
+        .sum::<f64>()
+}
+
+/// The angular frequency of lateral mode `n` of a hanging rope of `K` control points, from
+/// the zero crossings of its projection over a few periods, started in the continuum's shape.
+fn mode_frequency<const K: usize>(n: usize) -> f64 {
+    let mut rope = hanging::<K>(50_000.0);
+    let length = 1.0;
+    // The shape at the control points' Greville abscissae (their places on a straight rope).
+    let ys: Vec<f64> = rope.positions().iter().map(|p| -p.y).collect();
+    for (i, &s) in ys.iter().enumerate() {
+        let shape = j0(J0_ZEROS[n] * ((length - s) / length).max(0.0).sqrt());
+        let p = rope.positions()[i];
+        rope.set_position(i, Vec2::new(1e-3 * shape, p.y)).unwrap();
+    }
+    let (omega, _) = rope.stiffness_bound();
+    let h = 0.5 / omega;
+    let expected = J0_ZEROS[n] / 2.0 * (G / length).sqrt();
+    let steps = (6.0 * std::f64::consts::TAU / expected / h) as usize;
+    let mut last = projection(&rope, n);
+    let mut crossings = Vec::new();
+    for k in 1..=steps {
+        rope.step_once(h).unwrap();
+        let now = projection(&rope, n);
+        if (last > 0.0) != (now > 0.0) {
+            crossings.push((k as f64 - 1.0 + last / (last - now)) * h);
+        }
+        last = now;
+    }
+    assert!(
+        crossings.len() >= 6,
+        "mode {n}: {} crossings",
+        crossings.len()
+    );
+    let half = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    std::f64::consts::PI / half
+}
+
+#[test]
+fn eight_control_points_ring_like_the_continuum_hanging_chain() {
+    for (n, tolerance) in [(0, 0.002), (1, 0.005), (2, 0.01)] {
+        let expected = J0_ZEROS[n] / 2.0 * G.sqrt();
+        let got = mode_frequency::<8>(n);
+        let error = got / expected - 1.0;
+        eprintln!(
+            "mode {}: {got:.5} rad/s against {expected:.5}: {:+.4}%",
+            n + 1,
+            error * 100.0
+        );
+        assert!(
+            error.abs() < tolerance,
+            "mode {}: {:+.4}%",
+            n + 1,
+            error * 100.0
+        );
+    }
+}
+
+#[test]
+fn its_own_weight_stretches_it_by_at_most_two_tenths_of_a_percent() {
+    // EA = 5000 N for a 1 kg, 1 m rope: m·g / EA = 0.196% at the top, half that on average.
+    let rope = hanging::<8>(5_000.0);
+    let bottom = -rope.positions()[7].y;
+    let stretch = bottom - 1.0;
+    assert!(stretch > 0.0 && stretch <= 0.002 * 0.5 * 1.05, "{stretch}");
+}
+
+/// The catenary `y = a·cosh(x/a)` through two pins `span` apart with arc length `length`:
+/// its sag below the pins.
+fn catenary_sag(span: f64, length: f64) -> f64 {
+    // 2a·sinh(span / 2a) = length, by bisection on a.
+    let (mut lo, mut hi) = (1e-3, 1e3);
+    for _ in 0..200 {
+        let a = (lo * hi).sqrt();
+        if 2.0 * a * (span / (2.0 * a)).sinh() > length {
+            lo = a;
+        } else {
+            hi = a;
+        }
+    }
+    let a = (lo * hi).sqrt();
+    a * ((span / (2.0 * a)).cosh() - 1.0)
+}
+
+/// The sag of a rope `K` control points, 1.2 m and 1.2 kg, stiff (`EA/(ρ g L) ≈ 10⁴`), hung
+/// between pins 1 m apart and settled.
+fn sag<const K: usize>() -> f64 {
+    let stretch = Material {
+        stiffness: 100_000.0,
+        damping: 10.0,
+    };
+    let mut rope: SplineRope<Vec2<f64>, K> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.2, 0.0),
+        1.2,
+        stretch,
+        settings(G, 3.0),
+    )
+    .unwrap();
+    rope.set_pinned(K - 1, true).unwrap();
+    rope.set_position(K - 1, Vec2::new(1.0, 0.0)).unwrap();
+    for _ in 0..1200 {
+        rope.step(1.0 / 60.0).unwrap();
+    }
+    let mut curve = [Vec2::default(); 401];
+    let n = rope.sample(&mut curve).unwrap();
+    -curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min)
+}
+
+/// Within 3.5% of the catenary with 8 control points (measured -3.2%: too few to bend like
+/// the catenary and keep their length), 0.2% with 16 (measured -0.06%).
+#[test]
+fn between_two_pins_it_sags_like_the_catenary() {
+    let exact = catenary_sag(1.0, 1.2);
+    for (got, tolerance, k) in [(sag::<8>(), 0.035, 8), (sag::<16>(), 0.002, 16)] {
+        let error = got / exact - 1.0;
+        eprintln!(
+            "{k} control points: sag {got:.6} m against the catenary's {exact:.6} m: {:+.3}%",
+            error * 100.0
+        );
+        assert!(error.abs() < tolerance, "{k}: {:+.4}%", error * 100.0);
+    }
+}
+
+#[test]
+fn a_free_rope_falls_at_g_and_a_straight_one_rests() {
+    let stretch = Material {
+        stiffness: 1000.0,
+        damping: 1.0,
+    };
+    let mut free: SplineRope<Vec2<f64>, 6> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(2.0, 0.0),
+        3.0,
+        stretch,
+        settings(G, 0.0),
+    )
+    .unwrap();
+    free.set_pinned(0, false).unwrap();
+    for _ in 0..60 {
+        free.step(1.0 / 60.0).unwrap();
+    }
+    // The mass matrix's rows sum to the gravity load: every control point falls at g.
+    for v in free.velocities() {
+        assert!((v.y + G).abs() < 1e-9 && v.x.abs() < 1e-9, "{v:?}");
+    }
+    let mut still: SplineRope<Vec2<f64>, 6> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(2.0, 0.0),
+        3.0,
+        stretch,
+        settings(0.0, 0.0),
+    )
+    .unwrap();
+    let before = *still.positions();
+    for _ in 0..600 {
+        still.step(1.0 / 60.0).unwrap();
+    }
+    for (a, b) in before.iter().zip(still.positions()) {
+        assert!((*a - *b).length() < 1e-12);
+    }
+}
+
+#[test]
+fn a_point_force_is_shared_by_the_basis() {
+    let stretch = Material {
+        stiffness: 1000.0,
+        damping: 0.0,
+    };
+    let rope: SplineRope<Vec2<f64>, 8> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(2.0, 0.0),
+        1.0,
+        stretch,
+        settings(G, 0.0),
+    )
+    .unwrap();
+    for k in 0..=20 {
+        let s = 2.0 * k as f64 / 20.0;
+        let (first, w) = rope.weights_at(s);
+        assert!(first + 4 <= 8);
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12, "s {s}");
+        // The curve point they make lies at s along the straight rope.
+        let p: Vec2<f64> = (0..4).fold(Vec2::default(), |acc, j| {
+            acc + rope.positions()[first + j] * w[j]
+        });
+        assert!((p.x - s).abs() < 1e-12, "s {s}: {p:?}");
+    }
+}
+
+/// 10⁵ frames (half an hour) of a rope released level: with no damping at all, at
+/// `Accuracy::Fine`, the energy stays within 5% of `m·g·L`; with a 2% damping ratio on its
+/// fastest stretch wave, at the default `Accuracy::Fast`, it never gains energy.
+#[test]
+fn energy_stays_bounded() {
+    let run = |damping: f64, accuracy: Accuracy| -> (f64, f64) {
+        let mut s = settings(G, 0.0);
+        s.accuracy = accuracy;
+        let stretch = Material {
+            stiffness: 2000.0,
+            damping,
+        };
+        let mut rope: SplineRope<Vec2<f64>, 8> =
+            SplineRope::new(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), 1.0, stretch, s).unwrap();
+        let e0 = rope.energy();
+        let (mut gain, mut swing): (f64, f64) = (0.0, 0.0);
+        for _ in 0..100_000 {
+            rope.step(1.0 / 60.0).unwrap();
+            let de = rope.energy() - e0;
+            gain = gain.max(de);
+            swing = swing.max(de.abs());
+        }
+        (gain, swing)
+    };
+    let scale = 1.0 * G * 1.0; // m·g·L
+    let (_, swing) = run(0.0, Accuracy::Fine);
+    eprintln!(
+        "undamped, Fine: energy within {:.2}% of m·g·L",
+        swing / scale * 100.0
+    );
+    assert!(swing < 0.05 * scale, "{swing}");
+    // c = 0.04·EA / ω: a damping ratio (c/EA)·ω/2 of 2% on the fastest wave.
+    let omega = 1541.0;
+    let (gain, _) = run(0.04 * 2000.0 / omega, Accuracy::Fast);
+    eprintln!(
+        "2% strain damping, Fast: largest gain {:.4}% of m·g·L",
+        gain / scale * 100.0
+    );
+    assert!(gain < 0.01 * scale, "{gain}");
+}
+
+/// Symplectic Euler at 0.99× the computed limit `2 / ω` stays bounded; at 1.01× it blows up
+/// (a rope held taut at both ends, 1% stretched, nudged by 0.1 mm/s: its stretch waves are
+/// linear until they grow).
+#[test]
+fn the_step_bound_is_where_the_method_fails() {
+    let stretch = Material {
+        stiffness: 1000.0,
+        damping: 0.0,
+    };
+    let run = |factor: f64| -> f64 {
+        let mut rope: SplineRope<Vec2<f64>, 8> = SplineRope::new(
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            1.0,
+            stretch,
+            settings(0.0, 0.0),
+        )
+        .unwrap();
+        rope.set_pinned(7, true).unwrap();
+        for i in 0..8 {
+            let p = rope.positions()[i];
+            rope.set_position(i, Vec2::new(p.x * 1.01, 0.0)).unwrap();
+            if i > 0 && i < 7 {
+                rope.set_velocity(
+                    i,
+                    Vec2::new(1e-4 * ((i * 7) % 5) as f64, 1e-4 * (i % 3) as f64),
+                )
+                .unwrap();
+            }
+        }
+        let (omega, _) = rope.stiffness_bound();
+        let fastest = |r: &SplineRope<Vec2<f64>, 8>| {
+            r.velocities()
+                .iter()
+                .map(|v| v.length())
+                .fold(0.0, f64::max)
+        };
+        let v0 = fastest(&rope);
+        let mut worst: f64 = 0.0;
+        for _ in 0..400 {
+            if rope.step_once(factor * 2.0 / omega).is_err() {
+                return f64::INFINITY;
+            }
+            worst = worst.max(fastest(&rope));
+        }
+        worst / v0
+    };
+    let stable = run(0.99);
+    let unstable = run(1.01);
+    eprintln!(
+        "fastest point over 400 steps: {stable:.1}× the start at 0.99×, {unstable:.3e}× at 1.01×"
+    );
+    assert!(stable < 100.0, "{stable}");
+    assert!(unstable > 1e4, "{unstable}");
+}
+
+#[test]
+fn bad_input_is_an_error() {
+    let ok = Material {
+        stiffness: 100.0,
+        damping: 0.0,
+    };
+    let new = |start, end, mass, m| {
+        SplineRope::<Vec2<f64>, 5>::new(start, end, mass, m, settings(G, 0.0)).map(|_| ())
+    };
+    let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0));
+    assert_eq!(new(a, b, 0.0, ok), Err(Error::InvalidParameter));
+    assert_eq!(new(a, b, f64::NAN, ok), Err(Error::InvalidParameter));
+    let soft = Material {
+        stiffness: 0.0,
+        damping: 0.0,
+    };
+    assert_eq!(new(a, b, 1.0, soft), Err(Error::InvalidParameter));
+    assert!(matches!(
+        new(a, a, 1.0, ok),
+        Err(Error::ZeroRestLength { .. })
+    ));
+    assert!(new(Vec2::new(f64::NAN, 0.0), b, 1.0, ok).is_err());
+    let mut rope = SplineRope::<Vec2<f64>, 5>::new(a, b, 1.0, ok, settings(G, 0.0)).unwrap();
+    assert!(rope.step(-1.0).is_err());
+    assert!(rope.step(f64::NAN).is_err());
+    assert!(rope.set_pinned(5, true).is_err());
+    assert!(rope.apply_force(f64::NAN, Vec2::new(1.0, 0.0)).is_err());
+    let mut all = SplineRope::<Vec2<f64>, 4>::new(a, b, 1.0, ok, settings(G, 0.0)).unwrap();
+    for i in 1..3 {
+        all.set_pinned(i, true).unwrap();
+    }
+    assert_eq!(all.set_pinned(3, true), Err(Error::InvalidParameter));
+}
+
+/// Q16.16 follows f64 on a rope in pixels (70 px, 7 mass units, gravity 200 px/s²): within
+/// 2 px after two seconds of swinging.
+#[test]
+fn q16_follows_f64_in_pixels() {
+    fn swing<S: Scalar>() -> [f64; 2] {
+        let s = Settings {
+            gravity: Vec2::new(S::ZERO, S::from_i16(-200)),
+            damping: S::ratio(1, 10),
+            ..Settings::default()
+        };
+        let stretch = Material {
+            stiffness: S::from_i16(3000),
+            damping: S::from_i16(20),
+        };
+        let mut rope: SplineRope<Vec2<S>, 8> = SplineRope::new(
+            Vec2::new(S::ZERO, S::ZERO),
+            Vec2::new(S::from_i16(70), S::ZERO),
+            S::from_i16(7),
+            stretch,
+            s,
+        )
+        .unwrap();
+        for _ in 0..120 {
+            rope.step(S::ratio(1, 60)).unwrap();
+        }
+        let end = rope.positions()[7];
+        [end.x.to_f64(), end.y.to_f64()]
+    }
+    let (a, b) = (swing::<f64>(), swing::<Q16>());
+    let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    eprintln!("f64 end {a:?}, Q16 end {b:?}: {d:.3} px apart");
+    assert!(d < 2.0, "{d}");
+}
