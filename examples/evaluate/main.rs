@@ -11,6 +11,7 @@ mod contacts;
 mod fixed;
 mod flatten;
 mod integrators;
+mod modes;
 mod report;
 mod ropes;
 mod sails;
@@ -89,7 +90,7 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 7] = [
+    let sections: [(&str, Section); 8] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
@@ -97,6 +98,7 @@ fn main() {
         ("fixed against float", fixed::run),
         ("level of detail", flatten::run),
         ("contacts", contacts::run),
+        ("modes", modes::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {
