@@ -165,7 +165,7 @@ fn chain_mode<const N: usize>(n: usize) -> f64 {
 fn catenary_sag(span: f64, length: f64) -> f64 {
     let (mut lo, mut hi) = (1e-3, 1e3);
     for _ in 0..200 {
-        let a: f64 = (lo * hi as f64).sqrt();
+        let a: f64 = (lo * hi).sqrt();
         if 2.0 * a * (span / (2.0 * a)).sinh() > length {
             lo = a;
         } else {
