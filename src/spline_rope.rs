@@ -355,13 +355,19 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         Ok(())
     }
 
-    /// The basis weights at material coordinate `s` (clamped to `0..=length`): the first
+    /// The basis weights at material coordinate `s` (clamped to `0..=length`, NaN as 0): the first
     /// control point they apply to and the four weights, which sum to 1. A point of the
     /// curve is `Σ w_k p_(first + k)`; a force `f` there acts on those control points as
     /// `w_k f` (`Jᵀ f`).
     pub fn weights_at(&self, s: P::Scalar) -> (usize, [P::Scalar; 4]) {
         let spans = (K - 3) as f64;
-        let u = (s.to_f64() / self.length.to_f64()).clamp(0.0, 1.0) * spans;
+        let along = s.to_f64() / self.length.to_f64();
+        // NaN counts as the start.
+        let u = if along > 0.0 {
+            along.min(1.0) * spans
+        } else {
+            0.0
+        };
         let first = (u as usize).min(K - 4);
         (first, basis(u, K).0.map(P::Scalar::from_f64))
     }

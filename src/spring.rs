@@ -563,12 +563,15 @@ impl<S: Scalar, const U: usize, const V: usize> GridSprings<S, U, V> {
         }
     }
 
-    /// Whether family `f`'s spring from particle `(i, j)` is torn.
+    /// Whether family `f`'s spring from particle `(i, j)` is torn (`false` for a family,
+    /// row or column that does not exist).
     pub fn is_torn(&self, f: usize, i: usize, j: usize) -> bool {
-        self.torn
-            .get(j)
-            .and_then(|row| row.get(i))
-            .is_some_and(|bits| bits & (1 << f) != 0)
+        f < Self::FAMILIES.len()
+            && self
+                .torn
+                .get(j)
+                .and_then(|row| row.get(i))
+                .is_some_and(|bits| bits & (1 << f) != 0)
     }
 
     /// Tears every spring whose segment, seen along the first two coordinates, crosses the

@@ -507,6 +507,7 @@ fn an_overloaded_cloth_tears() {
         .filter(|&(i, j)| c.topology().is_torn(1, i, j))
         .count();
     assert!(torn > 0 && torn <= 30);
+    assert!(!c.topology().is_torn(9, 0, 0) && !c.topology().is_torn(0, 99, 0));
     assert_eq!(
         c.set_snap([Snap::Stretch(0.5), Snap::Never, Snap::Never]),
         Err(Error::InvalidParameter)

@@ -253,6 +253,7 @@ fn a_point_force_is_shared_by_the_basis() {
         });
         assert!((p.x - s).abs() < 1e-12, "s {s}: {p:?}");
     }
+    assert_eq!(rope.weights_at(f64::NAN), rope.weights_at(0.0));
 }
 
 /// 10⁵ frames (half an hour) of a rope released level: with no damping at all, at
