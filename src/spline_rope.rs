@@ -57,11 +57,11 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
-use crate::curve::eval_points;
 use crate::error::{check_index, check_non_negative, check_points, check_positive};
+use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
 use crate::system::StepInfo;
-use crate::{Error, Material, Point, Scalar, Settings};
+use crate::{Bezier, Error, Material, Point, Scalar, Settings};
 
 /// Gauss-Legendre points and weights on `[-1, 1]`: exact to degree 7 (the mass integrand
 /// `N_i N_j` is degree 6).
@@ -95,7 +95,7 @@ pub struct SplineRope<P: Point, const K: usize> {
     /// `∫ ρ N_i ds`: the gravity load per unit of `g`.
     load: [P::Scalar; K],
     /// The banded Cholesky factor of the mass matrix, pinned rows made identity:
-    /// `chol[i][d]` is `L[i][i - d]`.
+    /// `chol[i][d]` is `L[i][i - d]`, except `chol[i][0] = 1 / L[i][i]`.
     chol: [[P::Scalar; 4]; K],
     /// Each span's Bézier extraction: Bézier point `r` is `Σ_k ext[e][r][k] · p_(e+k)`.
     ext: [[[P::Scalar; 4]; 4]; K],
@@ -203,7 +203,12 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     fn refactor(&mut self) -> Result<(), Error> {
         let m = self.reduced(&self.band);
         let chol = cholesky(&m).ok_or(Error::InvalidParameter)?;
-        self.chol = chol.map(|row| row.map(P::Scalar::from_f64));
+        // The diagonal is kept inverted: a step multiplies where it would divide.
+        self.chol = chol.map(|row| {
+            let mut row = row;
+            row[0] = 1.0 / row[0];
+            row.map(P::Scalar::from_f64)
+        });
         // Stretch stiffness K_ij = ∫ EA N'_i N'_j ds, same band.
         let ea = self.material.stiffness.to_f64();
         let mut stiff = [[0.0; 4]; K];
@@ -528,35 +533,25 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         }
     }
 
-    /// Draws the curve into `out`: `(K-3)·s + 1` points, `s = ⌊(len - 1) / (K - 3)⌋` a span,
-    /// at even steps of the material coordinate; returns the count. The first and last
-    /// points are the end control points.
+    /// Draws the curve into `out` with the format's [`DefaultSampler`] (mul-free dyadic
+    /// halving in `Q16`), span by span from their Bézier extraction: `(K-3)·s + 1` points,
+    /// `s` points a span from `out`'s length (see [`Sampler::sample_joined`]); returns the
+    /// count. The first and last points are the end control points.
     ///
     /// # Errors
     /// [`Error::BufferTooSmall`] when `out` holds fewer than `K - 2` points.
     pub fn sample(&self, out: &mut [P]) -> Result<usize, Error> {
-        let spans = K - 3;
-        if out.len() < spans + 1 {
-            return Err(Error::BufferTooSmall {
-                needed: spans + 1,
-                got: out.len(),
-            });
-        }
-        let per = (out.len() - 1) / spans;
-        for e in 0..spans {
-            let bez: [P; 4] = core::array::from_fn(|r| {
+        let spans: [Bezier<P, 4>; K] = core::array::from_fn(|e| {
+            let e = e.min(K - 4);
+            Bezier::new_unchecked(core::array::from_fn(|r| {
                 let mut b = P::default();
                 for k in 0..4 {
                     b += self.pos[e + k] * self.ext[e][r][k];
                 }
                 b
-            });
-            for j in 0..per {
-                out[e * per + j] = eval_points(&bez, P::Scalar::ratio(j as u32, per as u32));
-            }
-        }
-        out[spans * per] = self.pos[K - 1];
-        Ok(spans * per + 1)
+            }))
+        });
+        DefaultSampler.sample_joined(&spans[..K - 3], out)
     }
 }
 
@@ -713,7 +708,8 @@ fn cholesky<const K: usize>(band: &[[f64; 4]; K]) -> Option<[[f64; 4]; K]> {
     Some(l)
 }
 
-/// Solves `L Lᵀ x = b` in place, `L` from [`cholesky`] in the format.
+/// Solves `L Lᵀ x = b` in place, `L` from [`cholesky`] in the format with its diagonal
+/// inverted.
 fn solve<P: Point, const K: usize>(l: &[[P::Scalar; 4]; K], b: &mut [P; K]) {
     for i in 0..K {
         let mut s = b[i];
@@ -722,7 +718,7 @@ fn solve<P: Point, const K: usize>(l: &[[P::Scalar; 4]; K], b: &mut [P; K]) {
                 s -= b[i - d] * l[i][d];
             }
         }
-        b[i] = s * (P::Scalar::ONE / l[i][0]);
+        b[i] = s * l[i][0];
     }
     for i in (0..K).rev() {
         let mut s = b[i];
@@ -731,7 +727,7 @@ fn solve<P: Point, const K: usize>(l: &[[P::Scalar; 4]; K], b: &mut [P; K]) {
                 s -= b[i + d] * l[i + d][d];
             }
         }
-        b[i] = s * (P::Scalar::ONE / l[i][0]);
+        b[i] = s * l[i][0];
     }
 }
 
