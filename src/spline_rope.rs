@@ -58,6 +58,8 @@
 //! ```
 
 use crate::error::{check_index, check_non_negative, check_points, check_positive};
+use core::ops::{Mul, Sub};
+
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
 use crate::system::StepInfo;
@@ -202,13 +204,12 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// stable substep's rate. `f64`, `O(K)` for the factor and `O(K)` per power iteration.
     fn refactor(&mut self) -> Result<(), Error> {
         let m = self.reduced(&self.band);
-        let chol = cholesky(&m).ok_or(Error::InvalidParameter)?;
+        let mut chol = cholesky(&m).ok_or(Error::InvalidParameter)?;
         // The diagonal is kept inverted: a step multiplies where it would divide.
-        self.chol = chol.map(|row| {
-            let mut row = row;
+        for row in &mut chol {
             row[0] = 1.0 / row[0];
-            row.map(P::Scalar::from_f64)
-        });
+        }
+        self.chol = chol.map(|row| row.map(P::Scalar::from_f64));
         // Stretch stiffness K_ij = ∫ EA N'_i N'_j ds, same band.
         let ea = self.material.stiffness.to_f64();
         let mut stiff = [[0.0; 4]; K];
@@ -710,12 +711,16 @@ fn cholesky<const K: usize>(band: &[[f64; 4]; K]) -> Option<[[f64; 4]; K]> {
 
 /// Solves `L Lᵀ x = b` in place, `L` from [`cholesky`] in the format with its diagonal
 /// inverted.
-fn solve<P: Point, const K: usize>(l: &[[P::Scalar; 4]; K], b: &mut [P; K]) {
+fn solve<T, S, const K: usize>(l: &[[S; 4]; K], b: &mut [T; K])
+where
+    T: Copy + Sub<Output = T> + Mul<S, Output = T>,
+    S: Copy,
+{
     for i in 0..K {
         let mut s = b[i];
         for d in 1..4 {
             if d <= i {
-                s -= b[i - d] * l[i][d];
+                s = s - b[i - d] * l[i][d];
             }
         }
         b[i] = s * l[i][0];
@@ -724,15 +729,15 @@ fn solve<P: Point, const K: usize>(l: &[[P::Scalar; 4]; K], b: &mut [P; K]) {
         let mut s = b[i];
         for d in 1..4 {
             if i + d < K {
-                s -= b[i + d] * l[i + d][d];
+                s = s - b[i + d] * l[i + d][d];
             }
         }
         b[i] = s * l[i][0];
     }
 }
 
-/// The largest eigenvalue of `M⁻¹ K` (both banded, `M` given by its factor), by power
-/// iteration on the free control points.
+/// The largest eigenvalue of `M⁻¹ K` (both banded, `M` given by its factor with the
+/// diagonal inverted), by power iteration on the free control points.
 fn largest_eigenvalue<const K: usize>(
     stiff: &[[f64; 4]; K],
     chol: &[[f64; 4]; K],
@@ -768,24 +773,7 @@ fn largest_eigenvalue<const K: usize>(
         }
         // y ← M⁻¹ y through the f64 factor.
         let mut z = y;
-        for i in 0..K {
-            let mut s = z[i];
-            for d in 1..4 {
-                if d <= i {
-                    s -= z[i - d] * chol[i][d];
-                }
-            }
-            z[i] = s / chol[i][0];
-        }
-        for i in (0..K).rev() {
-            let mut s = z[i];
-            for d in 1..4 {
-                if i + d < K {
-                    s -= z[i + d] * chol[i + d][d];
-                }
-            }
-            z[i] = s / chol[i][0];
-        }
+        solve(chol, &mut z);
         let norm = z.iter().map(|v| v * v).sum::<f64>();
         let dot = z.iter().zip(&x).map(|(a, b)| a * b).sum::<f64>();
         let xx = x.iter().map(|v| v * v).sum::<f64>();

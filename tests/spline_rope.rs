@@ -5,23 +5,11 @@ use dunas::Error;
 use dunas::prelude::*;
 use dunas::spline_rope::SplineRope;
 
-const G: f64 = 9.81;
-/// The first three zeros of J₀.
-const J0_ZEROS: [f64; 3] = [
-    2.404_825_557_695_773,
-    5.520_078_110_286_311,
-    8.653_727_912_911_012,
-];
+mod common;
 
-/// J₀ by its power series (exact to rounding for |x| < 12).
-fn j0(x: f64) -> f64 {
-    let (mut term, mut sum) = (1.0, 1.0);
-    for k in 1..60 {
-        term *= -(x * x / 4.0) / (k as f64 * k as f64);
-        sum += term;
-    }
-    sum
-}
+use common::{J0_ZEROS, catenary_sag, j0, spline_rope_sag};
+
+const G: f64 = 9.81;
 
 fn settings(gravity: f64, drag: f64) -> Settings<Vec2<f64>> {
     Settings {
@@ -132,54 +120,15 @@ fn its_own_weight_stretches_it_by_at_most_two_tenths_of_a_percent() {
     assert!(stretch > 0.0 && stretch <= 0.002 * 0.5 * 1.05, "{stretch}");
 }
 
-/// The catenary `y = a·cosh(x/a)` through two pins `span` apart with arc length `length`:
-/// its sag below the pins.
-fn catenary_sag(span: f64, length: f64) -> f64 {
-    // 2a·sinh(span / 2a) = length, by bisection on a.
-    let (mut lo, mut hi) = (1e-3, 1e3);
-    for _ in 0..200 {
-        let a = (lo * hi).sqrt();
-        if 2.0 * a * (span / (2.0 * a)).sinh() > length {
-            lo = a;
-        } else {
-            hi = a;
-        }
-    }
-    let a = (lo * hi).sqrt();
-    a * ((span / (2.0 * a)).cosh() - 1.0)
-}
-
-/// The sag of a rope `K` control points, 1.2 m and 1.2 kg, stiff (`EA/(ρ g L) ≈ 10⁴`), hung
-/// between pins 1 m apart and settled.
-fn sag<const K: usize>() -> f64 {
-    let stretch = Material {
-        stiffness: 100_000.0,
-        damping: 10.0,
-    };
-    let mut rope: SplineRope<Vec2<f64>, K> = SplineRope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(1.2, 0.0),
-        1.2,
-        stretch,
-        settings(G, 3.0),
-    )
-    .unwrap();
-    rope.set_pinned(K - 1, true).unwrap();
-    rope.set_position(K - 1, Vec2::new(1.0, 0.0)).unwrap();
-    for _ in 0..1200 {
-        rope.step(1.0 / 60.0).unwrap();
-    }
-    let mut curve = [Vec2::default(); 401];
-    let n = rope.sample(&mut curve).unwrap();
-    -curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min)
-}
-
 /// Within 3.5% of the catenary with 8 control points (measured -3.2%: too few to bend like
 /// the catenary and keep their length), 0.2% with 16 (measured -0.06%).
 #[test]
 fn between_two_pins_it_sags_like_the_catenary() {
     let exact = catenary_sag(1.0, 1.2);
-    for (got, tolerance, k) in [(sag::<8>(), 0.035, 8), (sag::<16>(), 0.002, 16)] {
+    for (got, tolerance, k) in [
+        (spline_rope_sag::<8>(), 0.035, 8),
+        (spline_rope_sag::<16>(), 0.002, 16),
+    ] {
         let error = got / exact - 1.0;
         eprintln!(
             "{k} control points: sag {got:.6} m against the catenary's {exact:.6} m: {:+.3}%",

@@ -5,27 +5,12 @@
 use dunas::prelude::*;
 use dunas::spline_rope::SplineRope;
 
+use crate::common::{J0_ZEROS, catenary_sag, j0, spline_rope_sag};
 use crate::report::{Run, Series, chart, csv};
 
 const G: f64 = 9.81;
-/// The first three zeros of J₀.
-const J0_ZEROS: [f64; 3] = [
-    2.404_825_557_695_773,
-    5.520_078_110_286_311,
-    8.653_727_912_911_012,
-];
 /// Axial stiffness against the rope's weight: `EA / (m g) = 5000`, a stretch of 0.02%.
 const EA: f64 = 5000.0 * G;
-
-/// J₀ by its power series.
-fn j0(x: f64) -> f64 {
-    let (mut term, mut sum) = (1.0, 1.0);
-    for k in 1..60 {
-        term *= -(x * x / 4.0) / (k as f64 * k as f64);
-        sum += term;
-    }
-    sum
-}
 
 /// The continuum's shape of mode `n` at distance `s` below the pin of a 1 m rope.
 fn shape(n: usize, s: f64) -> f64 {
@@ -161,46 +146,6 @@ fn chain_mode<const N: usize>(n: usize) -> f64 {
     })
 }
 
-/// The catenary's sag for a rope of `length` between pins `span` apart.
-fn catenary_sag(span: f64, length: f64) -> f64 {
-    let (mut lo, mut hi) = (1e-3, 1e3);
-    for _ in 0..200 {
-        let a: f64 = (lo * hi).sqrt();
-        if 2.0 * a * (span / (2.0 * a)).sinh() > length {
-            lo = a;
-        } else {
-            hi = a;
-        }
-    }
-    let a = (lo * hi).sqrt();
-    a * ((span / (2.0 * a)).cosh() - 1.0)
-}
-
-/// The sag of a 1.2 m spline rope of `K` control points between pins 1 m apart.
-fn spline_sag<const K: usize>() -> f64 {
-    let stretch = Material {
-        stiffness: 1e5,
-        damping: 10.0,
-    };
-    let mut rope: SplineRope<Vec2<f64>, K> = SplineRope::new(
-        Vec2::new(0.0, 0.0),
-        Vec2::new(1.2, 0.0),
-        1.2,
-        stretch,
-        settings(3.0),
-    )
-    .expect("a valid rope");
-    rope.set_pinned(K - 1, true).expect("in range");
-    rope.set_position(K - 1, Vec2::new(1.0, 0.0))
-        .expect("in range");
-    for _ in 0..1200 {
-        rope.step(1.0 / 60.0).expect("stable");
-    }
-    let mut curve = [Vec2::default(); 401];
-    let n = rope.sample(&mut curve).expect("room");
-    -curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min)
-}
-
 pub fn run(run: &mut Run) {
     let expected: Vec<f64> = J0_ZEROS.iter().map(|j| j / 2.0 * G.sqrt()).collect();
     let error = |got: f64, n: usize| (got / expected[n] - 1.0) * 100.0;
@@ -291,11 +236,11 @@ pub fn run(run: &mut Run) {
         "mode 3 depends on how few spans carry it",
     );
     let exact = catenary_sag(1.0, 1.2);
-    let sag8 = (spline_sag::<8>() / exact - 1.0) * 100.0;
+    let sag8 = (spline_rope_sag::<8>() / exact - 1.0) * 100.0;
     let sag16 = if run.quick {
         f64::NAN
     } else {
-        (spline_sag::<16>() / exact - 1.0) * 100.0
+        (spline_rope_sag::<16>() / exact - 1.0) * 100.0
     };
     run.target(
         "catenary sag within 0.2% (8 control points)",

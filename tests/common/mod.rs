@@ -366,3 +366,68 @@ pub fn settled_hanging_rope<S: Scalar, I: dunas::Integrator>(
     }
     rope
 }
+
+/// The first three zeros of J₀: the hanging chain's modes are `(j_n / 2)·√(g/L)`.
+pub const J0_ZEROS: [f64; 3] = [
+    2.404_825_557_695_773,
+    5.520_078_110_286_311,
+    8.653_727_912_911_012,
+];
+
+/// J₀ by its power series (exact to rounding for |x| < 12).
+pub fn j0(x: f64) -> f64 {
+    let (mut term, mut sum) = (1.0, 1.0);
+    for k in 1..60 {
+        term *= -(x * x / 4.0) / (k as f64 * k as f64);
+        sum += term;
+    }
+    sum
+}
+
+/// The catenary `y = a·cosh(x/a)` through two pins `span` apart with arc length `length`:
+/// its sag below the pins (`2a·sinh(span / 2a) = length`, by bisection on `a`).
+pub fn catenary_sag(span: f64, length: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-3, 1e3);
+    for _ in 0..200 {
+        let a: f64 = (lo * hi).sqrt();
+        if 2.0 * a * (span / (2.0 * a)).sinh() > length {
+            lo = a;
+        } else {
+            hi = a;
+        }
+    }
+    let a = (lo * hi).sqrt();
+    a * ((span / (2.0 * a)).cosh() - 1.0)
+}
+
+/// The sag of a spline rope of `K` control points, 1.2 m and 1.2 kg, stiff
+/// (`EA/(ρ g L) ≈ 10⁴`), hung between pins 1 m apart and settled for 20 s.
+pub fn spline_rope_sag<const K: usize>() -> f64 {
+    use dunas::spline_rope::SplineRope;
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 3.0,
+        ..Settings::default()
+    };
+    let stretch = Material {
+        stiffness: 100_000.0,
+        damping: 10.0,
+    };
+    let mut rope: SplineRope<Vec2<f64>, K> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.2, 0.0),
+        1.2,
+        stretch,
+        settings,
+    )
+    .expect("a valid rope");
+    rope.set_pinned(K - 1, true).expect("in range");
+    rope.set_position(K - 1, Vec2::new(1.0, 0.0))
+        .expect("in range");
+    for _ in 0..1200 {
+        rope.step(1.0 / 60.0).expect("stable");
+    }
+    let mut curve = [Vec2::default(); 401];
+    let n = rope.sample(&mut curve).expect("room");
+    -curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min)
+}
