@@ -1,6 +1,6 @@
 //! Step cost of every integrator for ropes of 8 and 30 particles and cloths of 8×8 and
 //! 20×20, the cost of a whole rope frame (step + 64-point curve), contacts against 4
-//! colliders, and the state sizes.
+//! colliders, the spline rope's substep, curve and frame, and the state sizes.
 //!
 //! Run: `cargo bench --bench physics`. The sizes are printed first.
 
@@ -251,12 +251,47 @@ fn sizes(_: &mut Criterion) {
     );
 }
 
+/// The spline rope of 8 control points (the swinging rope's length, mass and whole-rope
+/// stiffness): one substep of 1/240 s, the 64-point curve, and a 60 Hz frame of both.
+fn spline_rope(c: &mut Criterion) {
+    use dunas::spline_rope::SplineRope;
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -200.0),
+        damping: 0.1,
+        ..Settings::default()
+    };
+    let stretch = Material {
+        stiffness: 400.0 * 70.0,
+        damping: 2.0,
+    };
+    let mut r: SplineRope<Vec2<f32>, 8> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        stretch,
+        settings,
+    )
+    .unwrap();
+    for _ in 0..20 {
+        r.step(1.0 / 60.0).unwrap();
+    }
+    let mut out = [Vec2::<f32>::default(); 64];
+    let mut g = c.benchmark_group("spline_rope");
+    bench_on(&mut g, "substep8", &r, |r| r.step_once(1.0 / 240.0));
+    bench_on(&mut g, "sample64", &r, |r| r.sample(&mut out));
+    bench_on(&mut g, "frame8_sample64", &r, |r| {
+        r.step(1.0 / 60.0).unwrap();
+        r.sample(&mut out).unwrap()
+    });
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default()
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_millis(800))
         .sample_size(30);
-    targets = sizes, steps, frames, contacts, surfaces, breaking
+    targets = sizes, steps, frames, contacts, surfaces, breaking, spline_rope
 }
 criterion_main!(benches);

@@ -224,10 +224,28 @@ impl<'a, P: Point> Contacts<'a, P> {
             Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, Smoothed::ring),
             _ => return self.resolve_particles(pos, vel, inv_mass, (h, lag)),
         };
-        let mut weights = [P::Scalar::ZERO; K];
-        let Ok(mut curve) = build(smoothing, pos) else {
+        let Ok(curve) = build(smoothing, pos) else {
             return;
         };
+        let mut drawn = Rebuilt {
+            curve,
+            smoothing,
+            build,
+        };
+        self.resolve_spans(pos, vel, inv_mass, (h, lag), &mut drawn);
+    }
+
+    /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
+    /// docs), rebuilding it after every correction.
+    pub(crate) fn resolve_spans<const K: usize>(
+        &self,
+        pos: &mut [P; K],
+        vel: &mut [P; K],
+        inv_mass: &[P::Scalar; K],
+        (h, lag): (P::Scalar, P::Scalar),
+        curve: &mut impl DrawnSpans<P, K>,
+    ) {
+        let mut weights = [P::Scalar::ZERO; K];
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = collider.velocity() * lag;
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
@@ -249,9 +267,8 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if let Some(given) = spread(pos, vel, inv_mass, |i| weights[i], (dx, dv)) {
                     self.report(k, given);
                 }
-                match build(smoothing, pos) {
-                    Ok(c) => curve = c,
-                    Err(_) => return, // left the range: the step's guard undoes it
+                if !curve.rebuild(pos) {
+                    return; // left the range: the step's guard undoes it
                 }
             }
         }
@@ -376,6 +393,58 @@ impl<'a, P: Point> Contacts<'a, P> {
             slide * (kinetic * push / speed)
         };
         Some((dx - brake * h, n * push - brake))
+    }
+}
+
+/// A curve of spans drawn through `K` control points, as contacts test it: each span lies
+/// in the box of its own control points, and each of its points is a weighted sum of the
+/// `K` (see [`Smoothed`]).
+pub(crate) trait DrawnSpans<P: Point, const K: usize> {
+    /// Number of spans.
+    fn span_count(&self) -> usize;
+    /// A box that holds span `span`.
+    fn span_bounds(&self, span: usize) -> Aabb<P>;
+    /// The parameter in `[0, 1]` of span `span` where `key` is least.
+    fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar;
+    /// The point of span `span` at `t`.
+    fn point(&self, span: usize, t: P::Scalar) -> P;
+    /// The control points' weights in that point.
+    fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]);
+    /// Redraws through moved control points; `false` when they left the range.
+    fn rebuild(&mut self, pos: &[P; K]) -> bool;
+}
+
+/// A [`Smoothed`] curve with what rebuilds it.
+struct Rebuilt<P: Point, const K: usize> {
+    curve: Smoothed<P, K>,
+    smoothing: Smoothing,
+    build: fn(Smoothing, &[P; K]) -> Result<Smoothed<P, K>, Error>,
+}
+
+impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
+    fn span_count(&self) -> usize {
+        self.curve.span_count()
+    }
+    fn span_bounds(&self, span: usize) -> Aabb<P> {
+        self.curve.span_bounds(span)
+    }
+    fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
+        self.curve.deepest(span, key)
+    }
+    fn point(&self, span: usize, t: P::Scalar) -> P {
+        self.curve.point(span, t)
+    }
+    fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
+        self.curve.weights(span, t, weights);
+    }
+    fn rebuild(&mut self, pos: &[P; K]) -> bool {
+        match (self.build)(self.smoothing, pos) {
+            Ok(c) => {
+                self.curve = c;
+                true
+            }
+            Err(_) => false,
+        }
     }
 }
 

@@ -9,34 +9,47 @@
 //! - **mass** `M_ij = ∫ ρ N_i N_j ds`, the consistent matrix (banded, 7 diagonals), factored
 //!   once by Cholesky (in `f64`, stored in the format);
 //! - **gravity** `f_i = ∫ ρ N_i ds · g`;
-//! - **stretch** `½ ∫ EA (|x'| − 1)² ds` while taut; a rope does not push, so below 90% of
-//!   its length a span is slack, with a smooth step between (see `stretch_tension`); its
-//!   gradient at 3 Gauss points a span (one fewer than exact, against locking);
-//! - **damping** on the strain rate, `c · d|x'|/dt`, plus air drag `γ·M·v` ([`Settings::damping`]);
+//! - **stretch** `½ ∫ EA ε̄² ds` while taut, where `ε̄` is the strain `|x'| − 1` at 3 Gauss
+//!   points a span, projected (least squares) on the quadratic splines of the same breaks
+//!   (`K − 1` functions). A few cubic spans cannot bend like a hanging rope and keep
+//!   `|x'| = 1` at every point, so the raw strain locks them stiff; its projection asks
+//!   the length to hold on `K − 1` averages only (a "B-bar" strain). A rope does not push:
+//!   below 90% of its length it is slack, with a smooth step between (see
+//!   `stretch_tension`);
+//! - **damping** on the projected strain rate, `c · dε̄/dt`, plus air drag `γ·M·v`
+//!   ([`Settings::damping`]);
 //! - **pins** on control points: a clamped end interpolates its control point, so pinning
-//!   `p_0` holds the rope's end.
+//!   `p_0` holds the rope's end;
+//! - **force fields and contacts** as a [`Rope`](crate::Rope) takes them
+//!   ([`step_with`](SplineRope::step_with), [`step_touching`](SplineRope::step_touching)):
+//!   a force `f` at a point of the curve acts on the control points as `w_i f`, its basis
+//!   weights (`Jᵀ f`), and contacts push the drawn curve itself out of the colliders.
 //!
 //! Steps are symplectic Euler with substeps from the largest generalized eigenvalue of the
-//! stretch stiffness against the mass (found by power iteration at construction and when
-//! pins change), at the [`Accuracy`](crate::Accuracy)'s fraction of the limit.
+//! projected stretch stiffness against the mass (found by power iteration at construction
+//! and when pins change), at the [`Accuracy`]'s fraction of the limit.
 //!
 //! Accuracy, against the continuum (`tests/spline_rope.rs`): with 8 control points a hanging
-//! rope's first three lateral modes are within 0.01%, 0.01% and 0.7% of `(j_n / 2)·√(g/L)`
+//! rope's first three lateral modes are within 0.01%, 0.01% and 0.02% of `(j_n / 2)·√(g/L)`
 //! (measured the same way, a chain of 8 particles is 0.6%, 6.8% and 13.4% off, one of 30
-//! 0.04%, 0.46% and 1.8%: `cargo run --release --example evaluate`, section (h)). Between two pins, 8 control points sag 3.2% short
-//! of the catenary (too few to bend like it and keep their length) and 16 within 0.1%.
+//! 0.04%, 0.46% and 1.8%; linearized, a chain needs 289 particles to match mode 3:
+//! `cargo run --release --example evaluate`, section (h)). Between two pins, 8 control
+//! points sag within 0.1% of the catenary (3.2% short without the projection).
 //!
 //! Stability: the substep bound holds in every shape (the tension's stiffness never passes
-//! `EA`), but an undamped rope's fastest stretch waves gain energy at the default
-//! [`Accuracy::Fast`](crate::Accuracy::Fast): give the stretch a damping ratio of about 2% on
-//! them, `c ≥ 0.04·EA / ω` (`ω` from [`stiffness_bound`](SplineRope::stiffness_bound)), or
-//! step at [`Accuracy::Fine`](crate::Accuracy::Fine). Either keeps a swinging rope's energy
-//! bounded over 10⁵ frames.
+//! `EA`). At [`Accuracy::Fast`] and `Balanced`, symplectic Euler
+//! near its limit pumps energy from the swing into the fastest stretch waves until an
+//! undamped rope diverges; so at those accuracies the strain damping is at least
+//! [`MIN_DAMPING_RATIO`] (2%) of critical on those waves, `c ≥ 0.04·EA / ω`, which takes
+//! 0.005% of critical from a 1 m rope's swing. At [`Accuracy::Fine`]
+//! nothing is added. Either way a rope released level keeps its energy over 10⁵ frames
+//! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
-//! Cost per substep: `3·(K - 3)` square roots and about `150·K` multiply-adds. Formats:
-//! `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes measured in
-//! pixels (a 70 px rope of 7 mass units at `EA = 3000` ends 0.07 px from `f64` after 2 s);
-//! the construction (mass matrix, factor, bound) runs in `f64` and is stored in the format.
+//! Cost per substep: `3·(K - 3)` square roots and divisions, two banded solves and about
+//! `200·K` multiply-adds. Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`];
+//! `Q16` for ropes measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends
+//! 0.15 px from `f64` after 2 s); the construction (mass matrix, factors, bound) runs in
+//! `f64` and is stored in the format.
 //!
 //! ```
 //! use dunas::prelude::*;
@@ -60,10 +73,13 @@
 use crate::error::{check_index, check_non_negative, check_points, check_positive};
 use core::ops::{Mul, Sub};
 
+use crate::contact::{Contacts, DrawnSpans};
+use crate::force::{Accelerations, Bodies, ForceField};
+use crate::sampler::bernstein_weights;
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
 use crate::system::StepInfo;
-use crate::{Bezier, Error, Material, Point, Scalar, Settings};
+use crate::{Aabb, Accuracy, Bezier, Error, Material, Point, Scalar, Settings, Vec2};
 
 /// Gauss-Legendre points and weights on `[-1, 1]`: exact to degree 7 (the mass integrand
 /// `N_i N_j` is degree 6).
@@ -74,9 +90,8 @@ const GAUSS: [(f64, f64); 4] = [
     (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
 ];
 
-/// The stretch's quadrature: 3-point Gauss-Legendre, one point fewer than exact, which keeps
-/// a stiff rope from locking (with 4 points, 8 control points of a rope at `EA/(ρgL) = 10⁵`
-/// sag 3% short of the catenary; with 3, within 0.2%).
+/// The stretch's quadrature: 3-point Gauss-Legendre, exact for the projection's Gram matrix
+/// (quadratic times quadratic) and for a straight rope's stretch stiffness.
 const STRETCH_GAUSS: [(f64, f64); 3] = [
     (-0.774_596_669_241_483_4, 0.555_555_555_555_556),
     (0.0, 0.888_888_888_888_889),
@@ -94,13 +109,22 @@ pub struct SplineRope<P: Point, const K: usize> {
     pinned: [bool; K],
     /// At each span's quadrature points: `(w·ds, N'_0..3)`, `N'` by `s`.
     quad: [[StretchPoint<P::Scalar>; 3]; K],
-    /// `∫ ρ N_i ds`: the gravity load per unit of `g`.
+    /// `∫ ρ N_i ds`: the gravity load per unit of `g`, and each control point's mass for a
+    /// force field.
     load: [P::Scalar; K],
+    /// `1 / load`, 0 where pinned: the inverse masses a force field sees.
+    inv_load: [P::Scalar; K],
     /// The banded Cholesky factor of the mass matrix, pinned rows made identity:
     /// `chol[i][d]` is `L[i][i - d]`, except `chol[i][0] = 1 / L[i][i]`.
     chol: [[P::Scalar; 4]; K],
     /// Each span's Bézier extraction: Bézier point `r` is `Σ_k ext[e][r][k] · p_(e+k)`.
     ext: [[[P::Scalar; 4]; 4]; K],
+    /// The strain's projection: at each span's stretch points the quadratic basis
+    /// `N̂_e..N̂_(e+2)`; the stretch points' weights in a span (`w/2`); the factor of the
+    /// Gram matrix `Σ (w/2)·N̂_a·N̂_b` (diagonal inverted, unit past `K - 2`).
+    proj: [[[P::Scalar; 3]; 3]; K],
+    weights: [P::Scalar; 3],
+    gram: [[P::Scalar; 4]; K],
     /// Mass matrix in `f64` band form (`band[i][d] = M[i][i+d]`), kept to refactor on pins.
     band: [[f64; 4]; K],
     material: Material<P::Scalar>,
@@ -109,6 +133,9 @@ pub struct SplineRope<P: Point, const K: usize> {
     mass: P::Scalar,
     /// `ω` of the stretch against the mass (rad/s), from power iteration.
     omega: P::Scalar,
+    /// The strain damping in force: `material.damping`, at least [`MIN_DAMPING_RATIO`] of
+    /// critical on the fastest stretch wave (force · seconds).
+    damping: P::Scalar,
     /// The strain damping's rate, `(c / EA)·ω²` (1/s).
     gamma: P::Scalar,
     /// Generalized forces applied for the next step ([`apply_force`](Self::apply_force)).
@@ -157,14 +184,19 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             pinned: [false; K],
             quad: [[(zero, [zero; 4]); 3]; K],
             load: [zero; K],
+            inv_load: [zero; K],
             chol: [[zero; 4]; K],
             ext: [[[zero; 4]; 4]; K],
+            proj: [[[zero; 3]; 3]; K],
+            weights: STRETCH_GAUSS.map(|(_, w)| P::Scalar::from_f64(w / 2.0)),
+            gram: [[zero; 4]; K],
             band: [[0.0; 4]; K],
             material,
             settings,
             length,
             mass,
             omega: zero,
+            damping: zero,
             gamma: zero,
             extra: [P::default(); K],
             time: zero,
@@ -176,7 +208,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         let mut load = [0.0; K];
         for e in 0..spans {
             for &(xi, w) in &GAUSS {
-                let (n, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
+                let (n, _, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
                 let wds = w * ds / 2.0;
                 for a in 0..4 {
                     load[e + a] += rho * n[a] * wds;
@@ -186,7 +218,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
                 }
             }
             for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
-                let (_, dn) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
+                let (_, dn, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
                 rope.quad[e][q] = (
                     P::Scalar::from_f64(w * ds / 2.0),
                     dn.map(|d| P::Scalar::from_f64(d / ds)),
@@ -195,6 +227,9 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             rope.ext[e] = extraction(e, K).map(|row| row.map(P::Scalar::from_f64));
         }
         rope.load = load.map(P::Scalar::from_f64);
+        let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
+        rope.proj = proj.map(|span| span.map(|q| q.map(P::Scalar::from_f64)));
+        rope.gram = gram.map(|row| row.map(P::Scalar::from_f64));
         rope.pinned[0] = true;
         rope.refactor()?;
         Ok(rope)
@@ -203,6 +238,13 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// Factors the mass matrix with the pinned rows and columns made identity, and finds the
     /// stable substep's rate. `f64`, `O(K)` for the factor and `O(K)` per power iteration.
     fn refactor(&mut self) -> Result<(), Error> {
+        for i in 0..K {
+            self.inv_load[i] = if self.pinned[i] {
+                P::Scalar::ZERO
+            } else {
+                P::Scalar::ONE / self.load[i]
+            };
+        }
         let m = self.reduced(&self.band);
         let mut chol = cholesky(&m).ok_or(Error::InvalidParameter)?;
         // The diagonal is kept inverted: a step multiplies where it would divide.
@@ -210,26 +252,48 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             row[0] = 1.0 / row[0];
         }
         self.chol = chol.map(|row| row.map(P::Scalar::from_f64));
-        // Stretch stiffness K_ij = ∫ EA N'_i N'_j ds, same band.
+        // The stretch's stiffness on the straight rope, `EA·Bᵀ W Π B`: the strain of a
+        // displacement along the rope, projected, back through the slopes.
         let ea = self.material.stiffness.to_f64();
-        let mut stiff = [[0.0; 4]; K];
-        for e in 0..K - 3 {
-            for &(wds, dn) in &self.quad[e] {
-                let (w, dn) = (wds.to_f64(), dn.map(|d| d.to_f64()));
-                for a in 0..4 {
-                    for b in a..4 {
-                        stiff[e + a][b - a] += ea * dn[a] * dn[b] * w;
+        let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
+        let weights = STRETCH_GAUSS.map(|(_, w)| w / 2.0);
+        let quad = self
+            .quad
+            .map(|span| span.map(|(w, dn)| (w.to_f64(), dn.map(|d| d.to_f64()))));
+        let stiffness = |x: &[f64; K]| -> [f64; K] {
+            let mut strain = [[0.0; 3]; K];
+            for e in 0..K - 3 {
+                for (q, (_, dn)) in quad[e].iter().enumerate() {
+                    strain[e][q] = (0..4).map(|k| dn[k] * x[e + k]).sum();
+                }
+            }
+            project(&proj, &weights, &gram, &mut strain);
+            let mut y = [0.0; K];
+            for e in 0..K - 3 {
+                for (q, (wds, dn)) in quad[e].iter().enumerate() {
+                    for k in 0..4 {
+                        y[e + k] += ea * wds * strain[e][q] * dn[k];
                     }
                 }
             }
-        }
-        let stiff = self.reduced(&stiff);
-        let lambda = largest_eigenvalue(&stiff, &chol, &self.pinned);
+            y
+        };
+        let lambda = largest_eigenvalue(stiffness, &chol, &self.pinned);
         let omega = crate::catenary::sqrt(lambda);
-        let c_over_ea = self.material.damping.to_f64() / ea;
         self.omega = P::Scalar::from_f64(omega);
-        self.gamma = P::Scalar::from_f64(c_over_ea * omega * omega);
-        if self.omega.is_finite() && self.gamma.is_finite() {
+        self.plan_damping()
+    }
+
+    /// The strain damping in force and its rate, from `ω`, the material and the accuracy.
+    fn plan_damping(&mut self) -> Result<(), Error> {
+        let (ea, omega) = (self.material.stiffness.to_f64(), self.omega.to_f64());
+        let mut c = self.material.damping.to_f64();
+        if self.settings.accuracy != Accuracy::Fine {
+            c = c.max(MIN_DAMPING_RATIO * 2.0 * ea / omega);
+        }
+        self.damping = P::Scalar::from_f64(c);
+        self.gamma = P::Scalar::from_f64(c / ea * omega * omega);
+        if self.omega.is_finite() && self.gamma.is_finite() && self.damping.is_finite() {
             Ok(())
         } else {
             Err(Error::TooStiff)
@@ -277,7 +341,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
 
     /// The highest angular frequency of the stretch against the mass (rad/s, by power
     /// iteration on the straight rope) and the strain damping's rate (1/s): what the
-    /// substeps are planned from, at the [`Accuracy`](crate::Accuracy)'s fraction of
+    /// substeps are planned from, at the [`Accuracy`]'s fraction of
     /// symplectic Euler's limit `ω·h < 2`.
     pub fn stiffness_bound(&self) -> (P::Scalar, P::Scalar) {
         (self.omega, self.gamma)
@@ -294,7 +358,12 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// As [`Settings::check`]; the old settings stay.
     pub fn set_settings(&mut self, settings: Settings<P>) -> Result<(), Error> {
         settings.check()?;
-        self.settings = settings;
+        let before = core::mem::replace(&mut self.settings, settings);
+        if let Err(e) = self.plan_damping() {
+            self.settings = before;
+            self.plan_damping()?;
+            return Err(e);
+        }
         Ok(())
     }
 
@@ -396,28 +465,63 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         Ok(())
     }
 
-    /// The generalized forces: gravity, stretch and strain damping, and the applied forces.
-    fn forces(&self, x: &[P; K], v: &[P; K]) -> [P; K] {
-        let mut f: [P; K] = core::array::from_fn(|i| self.settings.gravity * self.load[i]);
-        for (fi, &e) in f.iter_mut().zip(&self.extra) {
-            *fi += e;
-        }
-        let (ea, c) = (self.material.stiffness, self.material.damping);
-        let one = P::Scalar::ONE;
+    /// The stretch at each span's stretch points: the slope `x'`, `1 / |x'|` (0 where the
+    /// curve stops), and the strain `|x'| − 1` with its rate (`x` and `y` of `strain`),
+    /// both projected on the quadratic splines (against locking).
+    fn strains(&self, x: &[P; K], v: &[P; K]) -> Strains<P, K> {
+        let zero = P::Scalar::ZERO;
+        let mut out = Strains {
+            slope: [[P::default(); 3]; K],
+            inv: [[zero; 3]; K],
+            strain: [[Vec2::new(zero, zero); 3]; K],
+        };
         for e in 0..K - 3 {
-            for &(wds, dn) in &self.quad[e] {
+            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
                 let (mut d, mut dv) = (P::default(), P::default());
                 for k in 0..4 {
                     d += x[e + k] * dn[k];
                     dv += v[e + k] * dn[k];
                 }
                 let l = d.length();
-                if l.partial_cmp(&P::Scalar::EPSILON) != Some(core::cmp::Ordering::Greater) {
-                    continue;
+                out.slope[e][q] = d;
+                let mut rate = zero;
+                if l.partial_cmp(&P::Scalar::EPSILON) == Some(core::cmp::Ordering::Greater) {
+                    let inv = P::Scalar::ONE / l;
+                    out.inv[e][q] = inv;
+                    rate = d.dot(dv) * inv;
                 }
-                let inv = one / l;
-                let tension = stretch_tension(ea, l) + c * d.dot(dv) * inv;
-                let pull = d * (tension * inv * wds);
+                out.strain[e][q] = Vec2::new(l - P::Scalar::ONE, rate);
+            }
+        }
+        project(&self.proj, &self.weights, &self.gram, &mut out.strain);
+        out
+    }
+
+    /// The generalized forces: gravity, stretch and strain damping, and the applied forces.
+    fn forces(&self, x: &[P; K], v: &[P; K]) -> [P; K] {
+        let mut f: [P; K] = core::array::from_fn(|i| self.settings.gravity * self.load[i]);
+        for (fi, &e) in f.iter_mut().zip(&self.extra) {
+            *fi += e;
+        }
+        let (ea, c) = (self.material.stiffness, self.damping);
+        let one = P::Scalar::ONE;
+        let st = self.strains(x, v);
+        let mut tension = [[P::Scalar::ZERO; 3]; K];
+        let mut taut = true;
+        for e in 0..K - 3 {
+            for q in 0..3 {
+                let Vec2 { x: strain, y: rate } = st.strain[e][q];
+                taut &= strain >= P::Scalar::ZERO;
+                tension[e][q] = stretch_tension(ea, one + strain) + c * rate;
+            }
+        }
+        // Taut, the tension is a quadratic spline already.
+        if !taut {
+            project(&self.proj, &self.weights, &self.gram, &mut tension);
+        }
+        for e in 0..K - 3 {
+            for (q, &(wds, dn)) in self.quad[e].iter().enumerate() {
+                let pull = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * wds);
                 for k in 0..4 {
                     f[e + k] -= pull * dn[k];
                 }
@@ -441,13 +545,10 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             }
         }
         e += P::Scalar::from_f64(kinetic / 2.0);
-        for e_ in 0..K - 3 {
-            for &(wds, dn) in &self.quad[e_] {
-                let mut d = P::default();
-                for k in 0..4 {
-                    d += self.pos[e_ + k] * dn[k];
-                }
-                e += stretch_energy(self.material.stiffness, d.length()) * wds;
+        let st = self.strains(&self.pos, &self.vel);
+        for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
+            for (strain, &(wds, _)) in span.iter().zip(quad) {
+                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain.x) * wds;
             }
         }
         for (p, &m) in self.pos.iter().zip(&self.load) {
@@ -465,11 +566,69 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// [`Error::Diverged`] when a coordinate came out non-finite or beyond the bounds (the
     /// state is then as before the call).
     pub fn step(&mut self, dt: P::Scalar) -> Result<StepInfo<P::Scalar>, Error> {
+        self.step_with(dt, ())
+    }
+
+    /// As [`step`](Self::step), adding the forces of `forces` (a [`ForceField`], a tuple of
+    /// them, or `()`) every substep. The field sees the control points as its bodies, each
+    /// with the mass the curve gives it, `∫ ρ N_i ds` (`inv_mass` 0 when pinned): an
+    /// acceleration `a` it adds becomes the generalized force `∫ ρ N_i ds · a` (exact for a
+    /// uniform field such as gravity), a force `f` acts on that control point as it is.
+    ///
+    /// # Errors
+    /// As [`step`](Self::step).
+    pub fn step_with<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        mut forces: F,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        self.step_resolving(dt, &mut forces, None)
+    }
+
+    /// As [`step_with`](Self::step_with), pushing the drawn curve (the state's own, whatever
+    /// [`Contacts::touch`] says) out of `contacts`' colliders after every substep, with
+    /// restitution and friction, and enough substeps that no point of it moves more than
+    /// the thickness in one (see [`contact`](crate::contact)). A correction `d` at a point of
+    /// the curve with basis weights `w` moves control point `i` by
+    /// `(w_i / m_i) · d / Σ_j w_j² / m_j`, `m_i = ∫ ρ N_i ds`: the least change that moves
+    /// that point by `d`.
+    ///
+    /// # Errors
+    /// As [`step`](Self::step); the impulses reported are then zero.
+    pub fn step_touching<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        mut forces: F,
+        contacts: &Contacts<'_, P>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        contacts.clear_impulses();
+        let info = self.step_resolving(dt, &mut forces, Some(contacts));
+        if info.is_err() {
+            contacts.clear_impulses();
+        }
+        info
+    }
+
+    fn step_resolving<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: &mut F,
+        contacts: Option<&Contacts<'_, P>>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
         check_non_negative(dt)?;
         let per_rate = substeps_per_rate(&self.settings.integrator, self.settings.accuracy);
         let rate = self.omega + self.gamma + self.settings.damping;
-        let (n, h, slow) = plan(dt, rate, per_rate, P::Scalar::ZERO)?;
-        self.substeps(n, h)?;
+        let floor = contacts.map_or(P::Scalar::ZERO, |c| {
+            let fastest = self
+                .vel
+                .iter()
+                .map(|v| v.length())
+                .fold(P::Scalar::ZERO, P::Scalar::max);
+            // The curve's points move as weighted means of the control points.
+            c.rate(fastest + self.settings.gravity.length() * dt, false)
+        });
+        let (n, h, slow) = plan(dt, rate, per_rate, floor)?;
+        let saturated = self.substeps(n, h, forces, contacts)?;
         Ok(StepInfo {
             substeps: n,
             simulated: if slow {
@@ -478,7 +637,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
                 dt
             },
             slow_motion: slow,
-            saturated: false,
+            saturated,
             snapped: 0,
         })
     }
@@ -490,18 +649,42 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// As [`step`](Self::step).
     pub fn step_once(&mut self, h: P::Scalar) -> Result<(), Error> {
         check_non_negative(h)?;
-        self.substeps(1, h)
+        self.substeps(1, h, &mut (), None).map(drop)
     }
 
-    fn substeps(&mut self, n: u16, h: P::Scalar) -> Result<(), Error> {
+    /// `n` substeps of `h`, each ending with the contacts; whether a `Q16` field's force
+    /// saturated.
+    fn substeps<F: ForceField<P>>(
+        &mut self,
+        n: u16,
+        h: P::Scalar,
+        field: &mut F,
+        contacts: Option<&Contacts<'_, P>>,
+    ) -> Result<bool, Error> {
         let saved = (self.pos, self.vel, self.time);
         let drag = self.settings.damping;
-        for _ in 0..n {
+        let mut saturated = false;
+        for step in 0..n {
             let mut a = self.forces(&self.pos, &self.vel);
-            for (ai, &p) in a.iter_mut().zip(&self.pinned) {
-                if p {
-                    *ai = P::default();
-                }
+            let mut added = [P::default(); K];
+            let mut out = Accelerations {
+                acc: &mut added,
+                inv_mass: &self.inv_load,
+                saturated: false,
+            };
+            let bodies = Bodies {
+                pos: &self.pos,
+                vel: &self.vel,
+                inv_mass: &self.inv_load,
+            };
+            field.apply(self.time, &bodies, &mut out);
+            saturated |= out.saturated;
+            for i in 0..K {
+                a[i] = if self.pinned[i] {
+                    P::default()
+                } else {
+                    a[i] + added[i] * self.load[i]
+                };
             }
             solve(&self.chol, &mut a);
             for i in 0..K {
@@ -512,6 +695,12 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
                 self.pos[i] += self.vel[i] * h;
             }
             self.time += h;
+            if let Some(contacts) = contacts {
+                let lag = h * P::Scalar::from_i16((n - 1 - step) as i16);
+                let mut curve = Spans::new(&self.ext, &self.pos);
+                let (pos, vel) = (&mut self.pos, &mut self.vel);
+                contacts.resolve_spans(pos, vel, &self.inv_load, (h, lag), &mut curve);
+            }
         }
         self.extra = [P::default(); K];
         let bounds = self.settings.bounds;
@@ -527,7 +716,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
                     (self.pos[i], self.vel[i]) = (saved.0[i], P::default());
                 }
             }
-            Ok(())
+            Ok(saturated)
         } else {
             (self.pos, self.vel, self.time) = saved;
             Err(Error::Diverged)
@@ -542,17 +731,8 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     /// # Errors
     /// [`Error::BufferTooSmall`] when `out` holds fewer than `K - 2` points.
     pub fn sample(&self, out: &mut [P]) -> Result<usize, Error> {
-        let spans: [Bezier<P, 4>; K] = core::array::from_fn(|e| {
-            let e = e.min(K - 4);
-            Bezier::new_unchecked(core::array::from_fn(|r| {
-                let mut b = P::default();
-                for k in 0..4 {
-                    b += self.pos[e + k] * self.ext[e][r][k];
-                }
-                b
-            }))
-        });
-        DefaultSampler.sample_joined(&spans[..K - 3], out)
+        let spans = Spans::new(&self.ext, &self.pos);
+        DefaultSampler.sample_joined(&spans.spans[..K - 3], out)
     }
 }
 
@@ -593,6 +773,80 @@ fn stretch_energy<S: Scalar>(ea: S, l: S) -> S {
     }
 }
 
+/// A spline rope's curve as Bézier spans (its Bézier extraction), as contacts test it.
+struct Spans<'a, P: Point, const K: usize> {
+    ext: &'a [[[P::Scalar; 4]; 4]; K],
+    /// Span `e` in `spans[e]` for `e < K - 3`; the rest repeat the last.
+    spans: [Bezier<P, 4>; K],
+}
+
+impl<'a, P: Point, const K: usize> Spans<'a, P, K> {
+    fn new(ext: &'a [[[P::Scalar; 4]; 4]; K], pos: &[P; K]) -> Self {
+        let mut spans = Spans {
+            ext,
+            spans: [Bezier::new_unchecked([P::default(); 4]); K],
+        };
+        spans.redraw(pos);
+        spans
+    }
+
+    fn redraw(&mut self, pos: &[P; K]) {
+        self.spans = core::array::from_fn(|e| {
+            let e = e.min(K - 4);
+            Bezier::new_unchecked(core::array::from_fn(|r| {
+                let mut b = P::default();
+                for k in 0..4 {
+                    b += pos[e + k] * self.ext[e][r][k];
+                }
+                b
+            }))
+        });
+    }
+}
+
+impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
+    fn span_count(&self) -> usize {
+        K - 3
+    }
+    fn span_bounds(&self, span: usize) -> Aabb<P> {
+        self.spans[span].bounding_box()
+    }
+    fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
+        self.spans[span].deepest(key)
+    }
+    fn point(&self, span: usize, t: P::Scalar) -> P {
+        self.spans[span].eval(t)
+    }
+    /// The Bernstein weights at `t` through the span's extraction.
+    fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
+        let mut bernstein = [P::Scalar::ZERO; 4];
+        bernstein_weights(t, &mut bernstein);
+        *weights = [P::Scalar::ZERO; K];
+        for (r, &b) in bernstein.iter().enumerate() {
+            for k in 0..4 {
+                weights[span + k] += b * self.ext[span][r][k];
+            }
+        }
+    }
+    fn rebuild(&mut self, pos: &[P; K]) -> bool {
+        self.redraw(pos);
+        true
+    }
+}
+
+/// The stretch at a rope's stretch points: see [`SplineRope::strains`].
+struct Strains<P: Point, const K: usize> {
+    slope: [[P; 3]; K],
+    inv: [[P::Scalar; 3]; K],
+    strain: [[Vec2<P::Scalar>; 3]; K],
+}
+
+/// The least damping ratio of the fastest stretch wave, 2%: below it, symplectic Euler near
+/// its limit (`Accuracy::Fast`, `Balanced`) pumps energy into those waves until an
+/// undamped rope diverges. On a rope's own motion the floor is negligible: mode `n` gets
+/// `2%·ω_n / ω` (0.005% on a 1 m rope's fundamental at `EA = 2000 N`).
+pub const MIN_DAMPING_RATIO: f64 = 0.02;
+
 /// Below `1 - SLACK` of its rest length a span of rope is slack: `(1, 10)`.
 const SLACK: (u32, u32) = (1, 10);
 
@@ -607,11 +861,13 @@ fn greville(i: usize, k: usize) -> f64 {
 /// (control points `span..span+4`) and their derivatives by `u`.
 fn basis(u: f64, k: usize) -> ([f64; 4], [f64; 4]) {
     let u = u.clamp(0.0, (k - 3) as f64);
-    basis_in((u as usize).min(k - 4), u, k)
+    let (n, dn, _) = basis_in((u as usize).min(k - 4), u, k);
+    (n, dn)
 }
 
-/// [`basis`] on span `span` (`u` may be its right end).
-fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4]) {
+/// [`basis`] on span `span` (`u` may be its right end), with the clamped quadratic basis on
+/// the same breaks (`K - 1` functions; the span's are `span..span+3`).
+fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4], [f64; 3]) {
     let spans = k - 3;
     // Knot j of the clamped vector 0,0,0,0,1,..,spans-1,spans,spans,spans,spans.
     let t = |j: isize| (j - 3).clamp(0, spans as isize) as f64;
@@ -654,7 +910,63 @@ fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4]) {
         let x2 = if den2 > 0.0 { deg2(a) / den2 } else { 0.0 };
         *d = 3.0 * (x1 - x2);
     }
-    (n, dn)
+    (n, dn, n2)
+}
+
+/// Replaces `field` (values at the stretch points) by its least-squares fit among the
+/// quadratic splines on the rope's breaks (tables from [`projection_tables`]).
+fn project<T, S: Scalar, const K: usize>(
+    proj: &[[[S; 3]; 3]; K],
+    weights: &[S; 3],
+    gram: &[[S; 4]; K],
+    field: &mut [[T; 3]; K],
+) where
+    T: Copy + Default + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
+{
+    let mut c = [T::default(); K];
+    for e in 0..K - 3 {
+        for q in 0..3 {
+            let weighted = field[e][q] * weights[q];
+            for a in 0..3 {
+                c[e + a] += weighted * proj[e][q][a];
+            }
+        }
+    }
+    solve(gram, &mut c);
+    for e in 0..K - 3 {
+        for q in 0..3 {
+            let mut sum = T::default();
+            for a in 0..3 {
+                sum += c[e + a] * proj[e][q][a];
+            }
+            field[e][q] = sum;
+        }
+    }
+}
+
+/// The stretch points' quadratic basis per span and the factor of its Gram matrix (diagonal
+/// inverted; row `K - 1`, past the `K - 1` functions, is the identity's).
+#[allow(clippy::type_complexity)]
+fn projection_tables<const K: usize>() -> Option<([[[f64; 3]; 3]; K], [[f64; 4]; K])> {
+    let mut proj = [[[0.0; 3]; 3]; K];
+    let mut gram = [[0.0; 4]; K];
+    gram[K - 1][0] = 1.0;
+    for e in 0..K - 3 {
+        for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
+            let (_, _, n) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
+            proj[e][q] = n;
+            for a in 0..3 {
+                for b in a..3 {
+                    gram[e + a][b - a] += w / 2.0 * n[a] * n[b];
+                }
+            }
+        }
+    }
+    let mut chol = cholesky(&gram)?;
+    for row in &mut chol {
+        row[0] = 1.0 / row[0];
+    }
+    Some((proj, chol))
 }
 
 /// The Bézier extraction of span `e`: row `r` holds the weights of control points
@@ -736,23 +1048,13 @@ where
     }
 }
 
-/// The largest eigenvalue of `M⁻¹ K` (both banded, `M` given by its factor with the
-/// diagonal inverted), by power iteration on the free control points.
+/// The largest eigenvalue of `M⁻¹ K` (`K` by its action `stiffness`, `M` by its banded
+/// factor with the diagonal inverted), by power iteration on the free control points.
 fn largest_eigenvalue<const K: usize>(
-    stiff: &[[f64; 4]; K],
+    stiffness: impl Fn(&[f64; K]) -> [f64; K],
     chol: &[[f64; 4]; K],
     pinned: &[bool; K],
 ) -> f64 {
-    let times = |band: &[[f64; 4]; K], x: &[f64; K]| -> [f64; K] {
-        core::array::from_fn(|i| {
-            let mut s = 0.0;
-            for j in i.saturating_sub(3)..(i + 4).min(K) {
-                let (lo, hi) = (i.min(j), i.max(j));
-                s += band[lo][hi - lo] * x[j];
-            }
-            s
-        })
-    };
     // Alternating signs excite the highest mode.
     let mut x: [f64; K] = core::array::from_fn(|i| {
         if pinned[i] {
@@ -765,7 +1067,7 @@ fn largest_eigenvalue<const K: usize>(
     });
     let mut lambda = 0.0;
     for _ in 0..200 {
-        let mut y = times(stiff, &x);
+        let mut y = stiffness(&x);
         for (yi, &p) in y.iter_mut().zip(pinned) {
             if p {
                 *yi = 0.0;
@@ -826,7 +1128,7 @@ mod tests {
                 core::array::from_fn(|r| (0..4).map(|c| ext[r][c] * cps[e + c]).sum());
             for m in 0..=10 {
                 let t = m as f64 / 10.0;
-                let (n, _) = basis_in(e, e as f64 + t, 8);
+                let (n, _, _) = basis_in(e, e as f64 + t, 8);
                 let exact: f64 = (0..4).map(|a| n[a] * cps[e + a]).sum();
                 let b = (1.0 - t).powi(3) * bez[0]
                     + 3.0 * t * (1.0 - t).powi(2) * bez[1]
