@@ -239,7 +239,9 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
             fast.step(DT as f32).expect("stable");
             std::hint::black_box(fast.sample(&mut out).expect("room"));
         });
-        let substeps = spline_rope::<f64, 8>(scene).step(DT).map_or(0, |i| i.substeps);
+        let substeps = spline_rope::<f64, 8>(scene)
+            .step(DT)
+            .map_or(0, |i| i.substeps);
         let raw_substeps = rope::<30, 29>(scene, AnyIntegrator::SymplecticEuler)
             .substeps_for(DT)
             .map_or(0, |(n, _)| n);
@@ -255,7 +257,9 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
         ));
         if scene == Scene::Swing {
             let finer = spline_error::<16>(scene, &references[k]);
-            let finer_substeps = spline_rope::<f64, 16>(scene).step(DT).map_or(0, |i| i.substeps);
+            let finer_substeps = spline_rope::<f64, 16>(scene)
+                .step(DT)
+                .map_or(0, |i| i.substeps);
             run.target(
                 "swinging, the 8-control-point spline rope no farther from the 200-particle reference than the raw \
                  30-particle rope, at least 4× cheaper per frame",
