@@ -5,7 +5,7 @@
 use dunas::prelude::*;
 use dunas::spline_rope::SplineRope;
 
-use crate::common::{J0_ZEROS, catenary_sag, j0, spline_rope_sag};
+use crate::common::{J0_ZEROS, catenary_sag, j0, jacobi_eigen, spline_rope_sag};
 use crate::report::{Run, Series, chart, csv};
 
 const G: f64 = 9.81;
@@ -151,6 +151,10 @@ fn chain_mode<const N: usize>(n: usize) -> f64 {
 /// with the hanging tension `T = ρ g (L − s)`, against the consistent mass `∫ ρ N_i N_j`, or
 /// its row sums when `lumped`. Exact Gauss quadrature, a dense generalized eigensolve.
 fn spline_linear(k: usize, lumped: bool) -> [f64; 3] {
+    assert!(
+        [5, 8, 12].contains(&k),
+        "sizes the eigensolver is built for"
+    );
     let spans = k - 3;
     let h = 1.0 / spans as f64;
     // Gauss-Legendre, 4 points: exact for the degree-6 mass integrand.
@@ -185,7 +189,12 @@ fn spline_linear(k: usize, lumped: bool) -> [f64; 3] {
     // The pin holds control point 0.
     let free =
         |x: &Vec<Vec<f64>>| -> Vec<Vec<f64>> { x[1..].iter().map(|r| r[1..].to_vec()).collect() };
-    let mut lambda = generalized_eigenvalues(&free(&stiff), &free(&m));
+    let (stiff, m) = (free(&stiff), free(&m));
+    let mut lambda = match k {
+        5 => generalized_eigenvalues::<4>(&stiff, &m).to_vec(),
+        8 => generalized_eigenvalues::<7>(&stiff, &m).to_vec(),
+        _ => generalized_eigenvalues::<11>(&stiff, &m).to_vec(),
+    };
     lambda.sort_by(f64::total_cmp);
     [0, 1, 2].map(|i| lambda[i].sqrt())
 }
@@ -245,63 +254,29 @@ fn clamped_cubic(u: f64, k: usize) -> (Vec<f64>, Vec<f64>) {
     (n3, dn)
 }
 
-/// The eigenvalues of `K v = λ M v` (`M` positive definite): Cholesky `M = L Lᵀ`, then
-/// cyclic Jacobi rotations on `L⁻¹ K L⁻ᵀ`.
-fn generalized_eigenvalues(k: &[Vec<f64>], m: &[Vec<f64>]) -> Vec<f64> {
-    let n = k.len();
-    let mut l = vec![vec![0.0; n]; n];
-    for i in 0..n {
+/// The eigenvalues of `K v = λ M v` (`M` positive definite, both `N × N`): Cholesky
+/// `M = L Lᵀ`, then Jacobi rotations on `L⁻¹ K L⁻ᵀ`.
+fn generalized_eigenvalues<const N: usize>(k: &[Vec<f64>], m: &[Vec<f64>]) -> [f64; N] {
+    let mut l = [[0.0; N]; N];
+    for i in 0..N {
         for j in 0..=i {
             let sum: f64 = m[i][j] - (0..j).map(|p| l[i][p] * l[j][p]).sum::<f64>();
             l[i][j] = if i == j { sum.sqrt() } else { sum / l[j][j] };
         }
     }
-    // Y = L⁻¹ K, then A = L⁻¹ Yᵀ (K symmetric).
-    let lower_solve = |b: &[f64]| -> Vec<f64> {
-        let mut x = vec![0.0; n];
-        for i in 0..n {
+    let lower_solve = |b: [f64; N]| -> [f64; N] {
+        let mut x = [0.0; N];
+        for i in 0..N {
             x[i] = (b[i] - (0..i).map(|p| l[i][p] * x[p]).sum::<f64>()) / l[i][i];
         }
         x
     };
-    let columns: Vec<Vec<f64>> = (0..n)
-        .map(|j| lower_solve(&(0..n).map(|i| k[i][j]).collect::<Vec<_>>()))
-        .collect();
-    // columns[j] = L⁻¹ K e_j; rows of (L⁻¹ K)ᵀ are those columns.
-    let mut a: Vec<Vec<f64>> = (0..n)
-        .map(|j| lower_solve(&(0..n).map(|i| columns[i][j]).collect::<Vec<_>>()))
-        .collect();
-    for _ in 0..100 {
-        let off: f64 = (0..n)
-            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| a[i][j] * a[i][j])
-            .sum();
-        if off < 1e-30 {
-            break;
-        }
-        for p in 0..n {
-            for q in p + 1..n {
-                if a[p][q].abs() < 1e-300 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let (c, s) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
-                for row in a.iter_mut() {
-                    let (arp, arq) = (row[p], row[q]);
-                    row[p] = c * arp - s * arq;
-                    row[q] = s * arp + c * arq;
-                }
-                let (row_p, row_q) = (a[p].clone(), a[q].clone());
-                for (r, (apr, aqr)) in row_p.iter().zip(&row_q).enumerate() {
-                    a[p][r] = c * apr - s * aqr;
-                    a[q][r] = s * apr + c * aqr;
-                }
-            }
-        }
-    }
-    (0..n).map(|i| a[i][i]).collect()
+    // Column j of L⁻¹ K, then row j of L⁻¹ (L⁻¹ K)ᵀ = L⁻¹ K L⁻ᵀ (K symmetric).
+    let columns: [[f64; N]; N] =
+        core::array::from_fn(|j| lower_solve(core::array::from_fn(|i| k[i][j])));
+    let a: [[f64; N]; N] =
+        core::array::from_fn(|j| lower_solve(core::array::from_fn(|i| columns[i][j])));
+    jacobi_eigen(a).0
 }
 
 /// The first three lateral frequencies (rad/s) of a 1 m, 1 kg chain of `n` particles (the
