@@ -352,7 +352,8 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         &self.settings
     }
 
-    /// Replaces the settings (gravity, air drag, bounds, accuracy) between steps.
+    /// Replaces the settings (gravity, air drag, bounds, accuracy) between steps; a change of
+    /// accuracy adds or removes the damping floor (see `MIN_DAMPING_RATIO`).
     ///
     /// # Errors
     /// As [`Settings::check`]; the old settings stay.
