@@ -916,7 +916,7 @@ fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4], [f64; 3]) {
 
 /// Replaces `field` (values at the stretch points) by its least-squares fit among the
 /// quadratic splines on the rope's breaks (tables from [`projection_tables`]).
-fn project<T, S: Scalar, const K: usize>(
+fn project<T, S: Copy, const K: usize>(
     proj: &[[[S; 3]; 3]; K],
     weights: &[S; 3],
     gram: &[[S; 4]; K],
