@@ -440,6 +440,7 @@ fn a_thin_peg_holds_the_drawn_curve() {
     let centre = Vec2::new(0.5, -0.1);
     let peg = [Collider::ball(centre, 0.005).unwrap()];
     let thickness = 0.002;
+    // A spline rope tests its drawn curve whatever the `Touch`: the curve is its state.
     let contacts = Contacts::new(&peg, thickness, Touch::Particles).unwrap();
     let mut curve = [Vec2::default(); 400];
     let mut deepest: f64 = f64::INFINITY;
