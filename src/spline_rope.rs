@@ -75,6 +75,7 @@ use core::ops::{Mul, Sub};
 
 use crate::contact::{Contacts, DrawnSpans};
 use crate::force::{Accelerations, Bodies, ForceField};
+use crate::integrator::{ImplicitEuler, Integrator, SymplecticEuler};
 use crate::sampler::bernstein_weights;
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
@@ -101,9 +102,10 @@ const STRETCH_GAUSS: [(f64, f64); 3] = [
 /// A quadrature point of the stretch: `w·ds` and the four basis slopes `N'` by `s`.
 type StretchPoint<S> = (S, [S; 4]);
 
-/// A rope of `K` control points whose drawn curve is its state. See the [module](self).
+/// A rope of `K` control points whose drawn curve is its state, stepped by `I` (see
+/// [`SplineStepper`]). See the [module](self).
 #[derive(Clone, Debug)]
-pub struct SplineRope<P: Point, const K: usize> {
+pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     pos: [P; K],
     vel: [P; K],
     pinned: [bool; K],
@@ -127,8 +129,10 @@ pub struct SplineRope<P: Point, const K: usize> {
     gram: [[P::Scalar; 4]; K],
     /// Mass matrix in `f64` band form (`band[i][d] = M[i][i+d]`), kept to refactor on pins.
     band: [[f64; 4]; K],
+    /// The same in the format, for the implicit stepper's products.
+    mass_band: [[P::Scalar; 4]; K],
     material: Material<P::Scalar>,
-    settings: Settings<P>,
+    settings: Settings<P, I>,
     length: P::Scalar,
     mass: P::Scalar,
     /// `ω` of the stretch against the mass (rad/s), from power iteration.
@@ -143,7 +147,7 @@ pub struct SplineRope<P: Point, const K: usize> {
     time: P::Scalar,
 }
 
-impl<P: Point, const K: usize> SplineRope<P, K> {
+impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// A straight rope from `start` (its first control point pinned) to `end`, of total
     /// `mass`, unstretched; `material.stiffness` is the axial stiffness `EA` (force units),
     /// `material.damping` the strain-rate damping `c` (force · seconds).
@@ -157,7 +161,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         end: P,
         mass: P::Scalar,
         material: Material<P::Scalar>,
-        settings: Settings<P>,
+        settings: Settings<P, I>,
     ) -> Result<Self, Error> {
         const {
             assert!(
@@ -191,6 +195,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             weights: STRETCH_GAUSS.map(|(_, w)| P::Scalar::from_f64(w / 2.0)),
             gram: [[zero; 4]; K],
             band: [[0.0; 4]; K],
+            mass_band: [[zero; 4]; K],
             material,
             settings,
             length,
@@ -227,6 +232,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             rope.ext[e] = extraction(e, K).map(|row| row.map(P::Scalar::from_f64));
         }
         rope.load = load.map(P::Scalar::from_f64);
+        rope.mass_band = rope.band.map(|row| row.map(P::Scalar::from_f64));
         let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
         rope.proj = proj.map(|span| span.map(|q| q.map(P::Scalar::from_f64)));
         rope.gram = gram.map(|row| row.map(P::Scalar::from_f64));
@@ -288,7 +294,8 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     fn plan_damping(&mut self) -> Result<(), Error> {
         let (ea, omega) = (self.material.stiffness.to_f64(), self.omega.to_f64());
         let mut c = self.material.damping.to_f64();
-        if self.settings.accuracy != Accuracy::Fine {
+        let explicit = self.settings.integrator.implicit_iterations().is_none();
+        if explicit && self.settings.accuracy != Accuracy::Fine {
             c = c.max(MIN_DAMPING_RATIO * 2.0 * ea / omega);
         }
         self.damping = P::Scalar::from_f64(c);
@@ -348,7 +355,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     }
 
     /// The settings in force.
-    pub fn settings(&self) -> &Settings<P> {
+    pub fn settings(&self) -> &Settings<P, I> {
         &self.settings
     }
 
@@ -357,7 +364,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
     ///
     /// # Errors
     /// As [`Settings::check`]; the old settings stay.
-    pub fn set_settings(&mut self, settings: Settings<P>) -> Result<(), Error> {
+    pub fn set_settings(&mut self, settings: Settings<P, I>) -> Result<(), Error> {
         settings.check()?;
         let before = core::mem::replace(&mut self.settings, settings);
         if let Err(e) = self.plan_damping() {
@@ -498,15 +505,15 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         out
     }
 
-    /// The generalized forces: gravity, stretch and strain damping, and the applied forces.
-    fn forces(&self, x: &[P; K], v: &[P; K]) -> [P; K] {
+    /// The generalized forces at strains `st`: gravity, stretch and strain damping, and the
+    /// applied forces; with the tension at each stretch point.
+    fn forces(&self, st: &Strains<P, K>) -> ([P; K], Tensions<P::Scalar, K>) {
         let mut f: [P; K] = core::array::from_fn(|i| self.settings.gravity * self.load[i]);
         for (fi, &e) in f.iter_mut().zip(&self.extra) {
             *fi += e;
         }
         let (ea, c) = (self.material.stiffness, self.damping);
         let one = P::Scalar::ONE;
-        let st = self.strains(x, v);
         let mut tension = [[P::Scalar::ZERO; 3]; K];
         let mut taut = true;
         for e in 0..K - 3 {
@@ -528,10 +535,272 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
                 }
             }
         }
-        f
+        (f, Tensions { tension, taut })
     }
 
-    /// Total energy: kinetic `½ vᵀMv`, stretch, and gravity's potential (zero at the origin).
+    /// The backward Euler stiffness at strains `st` for a step of `h`: per stretch point, the
+    /// axial `h²·dT/dl` (slack slopes below 0 dropped), the transverse `h²·T / |x'|` (a
+    /// pushing tension dropped, capped at `h²·EA` near a cusp), the direction `x' / |x'|`,
+    /// and the strain damping `h·c`. The dropped terms would make the system indefinite.
+    /// Without `stiffness`, the damping alone.
+    fn linearized(
+        &self,
+        st: &Strains<P, K>,
+        t: &Tensions<P::Scalar, K>,
+        h: P::Scalar,
+        stiffness: bool,
+    ) -> Linearized<P, K> {
+        let zero = P::Scalar::ZERO;
+        let ea = self.material.stiffness;
+        // `h²` is formed after each product: in `Q16` `1/60²` alone would be 1.2% short.
+        let mut lin = Linearized {
+            dir: [[P::default(); 3]; K],
+            axial: [[if stiffness { ea * h * h } else { zero }; 3]; K],
+            transverse: [[zero; 3]; K],
+            uniform: t.taut || !stiffness,
+            damping: h * self.damping,
+        };
+        for e in 0..K - 3 {
+            for q in 0..3 {
+                let inv = st.inv[e][q];
+                lin.dir[e][q] = st.slope[e][q] * inv;
+                if stiffness {
+                    lin.transverse[e][q] = (t.tension[e][q].max(zero) * inv).min(ea) * h * h;
+                    if !t.taut {
+                        let l = P::Scalar::ONE + st.strain[e][q].x;
+                        lin.axial[e][q] = stretch_slope(ea, l) * h * h;
+                    }
+                }
+            }
+        }
+        lin
+    }
+
+    /// `(h²·K + h·C)·u`: the stretch's stiffness `K` and the strain damping's `C` as
+    /// [`linearized`](Self::linearized), on control-point vectors `u` (matrix-free: one
+    /// projection, two when some span is slack).
+    fn stiffness_times(&self, lin: &Linearized<P, K>, u: &[P; K]) -> [P; K] {
+        let zero = P::Scalar::ZERO;
+        let mut slope = [[P::default(); 3]; K];
+        let mut along = [[zero; 3]; K];
+        for e in 0..K - 3 {
+            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
+                let mut d = P::default();
+                for k in 0..4 {
+                    d += u[e + k] * dn[k];
+                }
+                slope[e][q] = d;
+                along[e][q] = lin.dir[e][q].dot(d);
+            }
+        }
+        let mut strain = along;
+        project(&self.proj, &self.weights, &self.gram, &mut strain);
+        let mut tension = [[zero; 3]; K];
+        for e in 0..K - 3 {
+            for q in 0..3 {
+                tension[e][q] = lin.axial[e][q] * strain[e][q];
+            }
+        }
+        if !lin.uniform {
+            project(&self.proj, &self.weights, &self.gram, &mut tension);
+        }
+        let c = lin.damping;
+        let mut out = [P::default(); K];
+        for e in 0..K - 3 {
+            for (q, &(wds, dn)) in self.quad[e].iter().enumerate() {
+                let dir = lin.dir[e][q];
+                let pull = (dir * (tension[e][q] + c * strain[e][q])
+                    + (slope[e][q] - dir * along[e][q]) * lin.transverse[e][q])
+                    * wds;
+                for k in 0..4 {
+                    out[e + k] += pull * dn[k];
+                }
+            }
+        }
+        out
+    }
+
+    /// `M·u` from the band, free rows only (pinned entries of `u` must be zero).
+    fn mass_times(&self, u: &[P; K]) -> [P; K] {
+        let mut out = [P::default(); K];
+        for i in 0..K {
+            for d in 0..4 {
+                let j = i + d;
+                if j < K {
+                    let m = self.mass_band[i][d];
+                    out[i] += u[j] * m;
+                    if d > 0 {
+                        out[j] += u[i] * m;
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// One backward Euler step of `h` with the generalized forces `field` held: the
+    /// positions minimize the incremental potential
+    /// `½|x − x₀ − h·v₀|²_M + ½|x − x₀|²_D + h²·(V(x) − fᵀx)`, `D = h·(γ·M + C₀)`
+    /// (air drag, and the strain damping linearized at the start), `V` the stretch energy
+    /// and `f` gravity, the applied forces and `field`. Newton steps ([`NEWTON`] at most)
+    /// from `x₀ + h·v₀`, each solved by conjugate gradient preconditioned with the mass
+    /// matrix's factor (`iterations` at most) and cut back by halving until the potential
+    /// falls; then `v = (x − x₀) / h`.
+    fn implicit_step(&mut self, h: P::Scalar, field: &[P; K], iterations: u8) {
+        let zero = P::Scalar::ZERO;
+        let (x0, v0) = (self.pos, self.free(self.vel));
+        let still = [P::default(); K];
+        let start = self.strains(&x0, &v0);
+        let (_, t0) = self.forces(&start);
+        // `D·u`: the drag and the strain damping, linear, frozen at the start.
+        let damping = self.linearized(&start, &t0, h, false);
+        let drag = h * self.settings.damping;
+        let damp = |u: &[P; K]| -> [P; K] {
+            let (m, c) = (self.mass_times(u), self.stiffness_times(&damping, u));
+            core::array::from_fn(|i| m[i] * drag + c[i])
+        };
+        let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
+        let target: [P; K] = core::array::from_fn(|i| x0[i] + v0[i] * h);
+        let mut x = target;
+        let mut st = self.strains(&x, &still);
+        // Gravity, the applied forces and the field: the potential's linear part.
+        let outer: [P; K] = core::array::from_fn(|i| {
+            self.settings.gravity * self.load[i] + self.extra[i] + field[i]
+        });
+        let mut first = zero;
+        for _ in 0..NEWTON {
+            let (f, t) = self.forces(&st);
+            let dx: [P; K] = core::array::from_fn(|i| x[i] - target[i]);
+            let moved: [P; K] = core::array::from_fn(|i| x[i] - x0[i]);
+            let (m, d) = (self.mass_times(&dx), damp(&moved));
+            // `h²·∇Φ`: the stretch's share of it is in `f`.
+            let gradient = self.free(core::array::from_fn(|i| {
+                m[i] + d[i] - (f[i] + field[i]) * h * h
+            }));
+            let lin = self.linearized(&st, &t, h, true);
+            let step = self.conjugate_gradient(&lin, drag, &gradient, iterations);
+            // `−slope` is the Newton decrement: what a full step promises the potential.
+            let slope = dot(&step, &gradient);
+            if first == zero {
+                first = -slope;
+            }
+            if slope >= zero || !slope.is_finite() || -slope <= first * converged::<P::Scalar>() {
+                break;
+            }
+            // `h²·Φ` along the step, less its value at `x`:
+            // `α·linear + ½α²·curve + h²·(V(x + α·δ) − V(x))`.
+            let (md, dd) = (self.mass_times(&step), damp(&step));
+            let linear = (0..K).fold(zero, |sum, i| {
+                sum + step[i].dot(m[i] + d[i] - outer[i] * h * h)
+            });
+            let curve = dot(&step, &md) + dot(&step, &dd);
+            let mut alpha = P::Scalar::ONE;
+            if P::Scalar::FIXED_POINT {
+                // The potential's changes are below `Q16`'s resolution: whole steps.
+                x = core::array::from_fn(|i| x[i] + step[i]);
+                st = self.strains(&x, &still);
+            } else {
+                let energy = self.stretch_potential(&st);
+                let mut accepted = false;
+                for _ in 0..LINE_SEARCH {
+                    let trial: [P; K] = core::array::from_fn(|i| x[i] + step[i] * alpha);
+                    let trial_st = self.strains(&trial, &still);
+                    let change = alpha * linear
+                        + P::Scalar::ratio(1, 2) * alpha * alpha * curve
+                        + (self.stretch_potential(&trial_st) - energy) * h * h;
+                    // Armijo: a quarter of what the slope promises.
+                    if change <= alpha * slope * P::Scalar::ratio(1, 4) {
+                        (x, st, accepted) = (trial, trial_st, true);
+                        break;
+                    }
+                    alpha = alpha * P::Scalar::ratio(1, 2);
+                }
+                if !accepted {
+                    break;
+                }
+            }
+        }
+        let inv_h = P::Scalar::ONE / h;
+        for i in 0..K {
+            if !self.pinned[i] {
+                self.vel[i] = (x[i] - x0[i]) * inv_h;
+                self.pos[i] = x[i];
+            }
+        }
+    }
+
+    /// `u` with its pinned entries zero.
+    fn free(&self, mut u: [P; K]) -> [P; K] {
+        for (ui, &p) in u.iter_mut().zip(&self.pinned) {
+            if p {
+                *ui = P::default();
+            }
+        }
+        u
+    }
+
+    /// `δ` with `(M·(1 + drag) + h²·K + h·C)·δ = −b` on the free control points, `K` and `C`
+    /// from `lin`: conjugate gradient preconditioned with the mass matrix's factor, at most
+    /// `iterations` steps (exact in `2·(free points)`), stopped early when `r·M⁻¹r` has
+    /// fallen to [`converged`] of its start.
+    fn conjugate_gradient(
+        &self,
+        lin: &Linearized<P, K>,
+        drag: P::Scalar,
+        b: &[P; K],
+        iterations: u8,
+    ) -> [P; K] {
+        let zero = P::Scalar::ZERO;
+        let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
+        let mut r = self.free(b.map(|bi| -bi));
+        let mut out = [P::default(); K];
+        let mut z = r;
+        solve(&self.chol, &mut z);
+        let mut p = z;
+        let mut rz = dot(&r, &z);
+        let tolerance = rz * converged::<P::Scalar>();
+        for _ in 0..iterations {
+            if rz <= tolerance || !rz.is_finite() {
+                break;
+            }
+            let (m, k) = (self.mass_times(&p), self.stiffness_times(lin, &p));
+            let ap = self.free(core::array::from_fn(|i| {
+                m[i] * (P::Scalar::ONE + drag) + k[i]
+            }));
+            let pap = dot(&p, &ap);
+            if pap <= zero || !pap.is_finite() {
+                break;
+            }
+            let alpha = rz / pap;
+            for i in 0..K {
+                out[i] += p[i] * alpha;
+                r[i] -= ap[i] * alpha;
+            }
+            z = r;
+            solve(&self.chol, &mut z);
+            let next = dot(&r, &z);
+            let beta = next / rz;
+            for i in 0..K {
+                p[i] = z[i] + p[i] * beta;
+            }
+            rz = next;
+        }
+        out
+    }
+
+    /// The stretch energy at strains `st`.
+    fn stretch_potential(&self, st: &Strains<P, K>) -> P::Scalar {
+        let mut e = P::Scalar::ZERO;
+        for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
+            for (strain, &(wds, _)) in span.iter().zip(quad) {
+                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain.x) * wds;
+            }
+        }
+        e
+    }
+
+    /// Total energy: kinetic `½ vᵀMv`, stretch (zero at the rest length), and gravity's
+    /// potential (zero at the origin).
     pub fn energy(&self) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
         // Kinetic, from the f64 band of M.
@@ -546,12 +815,7 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             }
         }
         e += P::Scalar::from_f64(kinetic / 2.0);
-        let st = self.strains(&self.pos, &self.vel);
-        for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
-            for (strain, &(wds, _)) in span.iter().zip(quad) {
-                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain.x) * wds;
-            }
-        }
+        e += self.stretch_potential(&self.strains(&self.pos, &self.vel));
         for (p, &m) in self.pos.iter().zip(&self.load) {
             e -= self.settings.gravity.dot(*p) * m;
         }
@@ -666,7 +930,6 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
         let drag = self.settings.damping;
         let mut saturated = false;
         for step in 0..n {
-            let mut a = self.forces(&self.pos, &self.vel);
             let mut added = [P::default(); K];
             let mut out = Accelerations {
                 acc: &mut added,
@@ -680,20 +943,19 @@ impl<P: Point, const K: usize> SplineRope<P, K> {
             };
             field.apply(self.time, &bodies, &mut out);
             saturated |= out.saturated;
-            for i in 0..K {
-                a[i] = if self.pinned[i] {
-                    P::default()
-                } else {
-                    a[i] + added[i] * self.load[i]
-                };
-            }
-            solve(&self.chol, &mut a);
-            for i in 0..K {
-                if self.pinned[i] {
-                    continue;
+            let field: [P; K] = core::array::from_fn(|i| added[i] * self.load[i]);
+            if let Some(iterations) = self.settings.integrator.implicit_iterations() {
+                self.implicit_step(h, &field, iterations);
+            } else {
+                let (f, _) = self.forces(&self.strains(&self.pos, &self.vel));
+                let mut a = self.free(core::array::from_fn(|i| f[i] + field[i]));
+                solve(&self.chol, &mut a);
+                for i in 0..K {
+                    if !self.pinned[i] {
+                        self.vel[i] += (a[i] - self.vel[i] * drag) * h;
+                        self.pos[i] += self.vel[i] * h;
+                    }
                 }
-                self.vel[i] += (a[i] - self.vel[i] * drag) * h;
-                self.pos[i] += self.vel[i] * h;
             }
             self.time += h;
             if let Some(contacts) = contacts {
@@ -757,21 +1019,30 @@ fn stretch_tension<S: Scalar>(ea: S, l: S) -> S {
     }
 }
 
-/// The stretch energy per unit length whose derivative is [`stretch_tension`] (0 when slack).
+/// The slope of [`stretch_tension`] by `l`, negative slopes (the slack step's first part)
+/// as 0: within `[0, EA]`.
+fn stretch_slope<S: Scalar>(ea: S, l: S) -> S {
+    let one = S::ONE;
+    if l >= one {
+        return ea;
+    }
+    let delta = S::ratio(SLACK.0, SLACK.1);
+    let x = (l - one + delta) / delta;
+    (ea * x * (S::from_i16(3) * x - S::from_i16(2))).max(S::ZERO)
+}
+
+/// The stretch energy per unit length whose derivative is [`stretch_tension`]: 0 at the
+/// rest length, `EA·SLACK²/12` when slack.
 fn stretch_energy<S: Scalar>(ea: S, l: S) -> S {
     let one = S::ONE;
     let delta = S::ratio(SLACK.0, SLACK.1);
-    let x = (l - one + delta) / delta;
-    if x <= S::ZERO {
-        return S::ZERO;
-    }
     let twelfth = S::ratio(1, 12);
     if l >= one {
         let strain = l - one;
-        S::ratio(1, 2) * ea * strain * strain - ea * delta * delta * twelfth
-    } else {
-        ea * delta * delta * x * x * x * (S::ratio(1, 4) * x - S::ratio(1, 3))
+        return S::ratio(1, 2) * ea * strain * strain;
     }
+    let x = ((l - one + delta) / delta).max(S::ZERO);
+    ea * delta * delta * (x * x * x * (S::ratio(1, 4) * x - S::ratio(1, 3)) + twelfth)
 }
 
 /// A spline rope's curve as Bézier spans (its Bézier extraction), as contacts test it.
@@ -842,11 +1113,74 @@ struct Strains<P: Point, const K: usize> {
     strain: [[Vec2<P::Scalar>; 3]; K],
 }
 
+/// The tension at a rope's stretch points (force units) and whether every span is taut.
+struct Tensions<S, const K: usize> {
+    tension: [[S; 3]; K],
+    taut: bool,
+}
+
+/// A backward Euler step's stiffness at a rope's stretch points: see
+/// [`SplineRope::linearized`].
+struct Linearized<P: Point, const K: usize> {
+    dir: [[P; 3]; K],
+    axial: [[P::Scalar; 3]; K],
+    transverse: [[P::Scalar; 3]; K],
+    /// Every `axial` is `h²·EA`: the projected strain needs no second projection.
+    uniform: bool,
+    /// `h·c`, the strain damping's share.
+    damping: P::Scalar,
+}
+
+/// How a [`SplineRope`] steps, chosen by the type of its [`Settings::integrator`]:
+///
+/// - [`SymplecticEuler`] (the default): explicit, in substeps from
+///   [`SplineRope::stiffness_bound`] at the [`Accuracy`]'s fraction of `ω·h < 2`. One force
+///   evaluation and two banded solves a substep; bounded energy.
+/// - [`ImplicitEuler`]: backward Euler linearized once a step (Baraff–Witkin), solved by
+///   conjugate gradient preconditioned by the mass matrix, at most
+///   [`iterations`](ImplicitEuler::iterations) steps (a rope of `n` free control points is
+///   solved exactly in `2n`). One step a frame at any stiffness, more only for contacts;
+///   it damps what the step cannot resolve, the swing too: a mode of `ω` loses
+///   `1 - 1/(1 + (ω·h)²)` of its energy a step. For stiff ropes (cables, chains), where
+///   the explicit substeps would pass [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS).
+///   No damping floor is needed.
+///
+/// Sealed: [`Integrator`] is.
+pub trait SplineStepper: Integrator {
+    /// The conjugate-gradient budget of an implicit stepper; `None` for an explicit one.
+    fn implicit_iterations(&self) -> Option<u8>;
+}
+
+impl SplineStepper for SymplecticEuler {
+    fn implicit_iterations(&self) -> Option<u8> {
+        None
+    }
+}
+
+impl SplineStepper for ImplicitEuler {
+    fn implicit_iterations(&self) -> Option<u8> {
+        Some(self.iterations)
+    }
+}
+
 /// The least damping ratio of the fastest stretch wave, 2%: below it, symplectic Euler near
 /// its limit (`Accuracy::Fast`, `Balanced`) pumps energy into those waves until an
 /// undamped rope diverges. On a rope's own motion the floor is negligible: mode `n` gets
 /// `2%·ω_n / ω` (0.005% on a 1 m rope's fundamental at `EA = 2000 N`).
 pub const MIN_DAMPING_RATIO: f64 = 0.02;
+
+/// Most Newton steps of the implicit stepper in one step.
+const NEWTON: usize = 4;
+
+/// Where the implicit stepper's iterations stop: when the Newton decrement (what a full
+/// step promises the potential), or the conjugate gradient's `r·M⁻¹r`, has fallen to `2⁻²⁰`
+/// of its first value in the step, or to the format's epsilon if that is larger.
+fn converged<S: Scalar>() -> S {
+    S::ratio(1, 1 << 20).max(S::EPSILON)
+}
+
+/// Most halvings of a Newton step before the implicit stepper keeps what it has.
+const LINE_SEARCH: usize = 6;
 
 /// Below `1 - SLACK` of its rest length a span of rope is slack: `(1, 10)`.
 const SLACK: (u32, u32) = (1, 10);
@@ -1141,6 +1475,64 @@ mod tests {
     }
 
     /// An undamped 1 m, 1 kg rope of 8 control points, `EA = 2000`, under `gravity`.
+    /// The implicit step's stiffness product is symmetric and positive semi-definite, and
+    /// where every tension pulls (stretched 7%) it is the forces' derivative; where some
+    /// spans are slack (compressed to 93%), it drops what would make it indefinite.
+    #[test]
+    fn the_stiffness_product_is_the_force_derivative() {
+        use crate::Vec2;
+        for stretch in [1.07, 0.93] {
+            let mut r = rope(Vec2::new(0.3, -9.81));
+            for i in 0..8 {
+                let p = r.pos[i];
+                r.pos[i] = Vec2::new(
+                    p.x * stretch + 0.01 * (i as f64 * 1.3).sin(),
+                    0.03 * (i as f64 * 0.7).cos(),
+                );
+            }
+            let zero_v = [Vec2::default(); 8];
+            let st = r.strains(&r.pos, &zero_v);
+            let (_, t) = r.forces(&st);
+            let mut lin = r.linearized(&st, &t, 1.0, true);
+            lin.damping = 0.0;
+            let u: [Vec2<f64>; 8] =
+                core::array::from_fn(|i| Vec2::new((i as f64).sin(), (i as f64 * 2.1).cos()));
+            let ku = r.stiffness_times(&lin, &u);
+            let eps = 1e-7;
+            let at = |sign: f64| {
+                let x: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + u[i] * (sign * eps));
+                r.forces(&r.strains(&x, &zero_v)).0
+            };
+            let (plus, minus) = (at(1.0), at(-1.0));
+            let w: [Vec2<f64>; 8] =
+                core::array::from_fn(|i| Vec2::new((i as f64 * 0.3).cos(), (i as f64).sin()));
+            let kw = r.stiffness_times(&lin, &w);
+            let dot = |a: &[Vec2<f64>; 8], b: &[Vec2<f64>; 8]| -> f64 {
+                a.iter().zip(b).map(|(x, y)| x.dot(*y)).sum()
+            };
+            let (uku, wkw, ukw, wku) = (dot(&u, &ku), dot(&w, &kw), dot(&u, &kw), dot(&w, &ku));
+            assert!(uku >= 0.0 && wkw >= 0.0, "{stretch}: {uku} {wkw}");
+            assert!(
+                (ukw - wku).abs() < 1e-9 * (uku + wkw),
+                "{stretch}: {ukw} {wku}"
+            );
+            if stretch < 1.0 {
+                // Slack: the dropped terms make it differ from the derivative.
+                continue;
+            }
+            for i in 0..8 {
+                let fd = (plus[i] - minus[i]) * (-0.5 / eps);
+                let scale = 1.0 + fd.length();
+                assert!(
+                    (ku[i] - fd).length() < 1e-6 * scale,
+                    "{i}: {:?} {:?}",
+                    ku[i],
+                    fd
+                );
+            }
+        }
+    }
+
     fn rope(gravity: crate::Vec2<f64>) -> SplineRope<crate::Vec2<f64>, 8> {
         let s = Settings {
             gravity,
@@ -1166,7 +1558,7 @@ mod tests {
                 0.2 * (i as f64 * 0.7).cos(),
             );
         }
-        let f = r.forces(&r.pos, &r.vel);
+        let f = r.forces(&r.strains(&r.pos, &r.vel)).0;
         let h = 1e-6;
         for i in 0..8 {
             for axis in 0..2 {
@@ -1201,7 +1593,7 @@ mod tests {
             }
             // Power iteration on -M⁻¹ ∂f/∂x by finite differences of the forces.
             let zero_v = [Vec2::default(); 8];
-            let f0 = r.forces(&r.pos, &zero_v);
+            let f0 = r.forces(&r.strains(&r.pos, &zero_v)).0;
             let mut x: [Vec2<f64>; 8] = core::array::from_fn(|i| {
                 if i == 0 {
                     Vec2::default()
@@ -1213,7 +1605,7 @@ mod tests {
             for _ in 0..300 {
                 let h = 1e-7;
                 let moved: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + x[i] * h);
-                let f1 = r.forces(&moved, &zero_v);
+                let f1 = r.forces(&r.strains(&moved, &zero_v)).0;
                 let mut y: [Vec2<f64>; 8] = core::array::from_fn(|i| (f0[i] - f1[i]) * (1.0 / h));
                 y[0] = Vec2::default();
                 solve(&r.chol, &mut y);

@@ -4,8 +4,9 @@
 
 use dunas::Settings;
 use dunas::integrator::AnyIntegrator;
+use dunas::integrator::{ImplicitEuler, SymplecticEuler};
 use dunas::smooth::Smoothing;
-use dunas::spline_rope::SplineRope;
+use dunas::spline_rope::{SplineRope, SplineStepper};
 use dunas::spring::Material;
 use dunas::{Rope, Vec2};
 
@@ -173,15 +174,20 @@ fn rope_rows<const N: usize, const CAP: usize>(
     }
 }
 
-/// The spline rope of `K` control points in the same scene: the same length, mass, whole-rope
-/// stiffness (`EA = k·L`) and damping, its state the drawn curve's control points.
-fn spline_rope<S: dunas::Scalar, const K: usize>(scene: Scene) -> SplineRope<Vec2<S>, K> {
+/// The spline rope of `K` control points in the same scene, stepped by `stepper`: the same
+/// length, mass, whole-rope stiffness (`EA = k·L`) and damping, its state the drawn curve's
+/// control points.
+fn spline_rope<S: dunas::Scalar, const K: usize, I: SplineStepper>(
+    scene: Scene,
+    stepper: I,
+) -> SplineRope<Vec2<S>, K, I> {
     let s = |x: f64| S::from_f64(x);
     let settings = Settings {
         gravity: Vec2::new(S::ZERO, s(GRAVITY)),
         damping: s(if scene == Scene::Rest { 3.0 } else { 0.05 }),
         ..Settings::default()
-    };
+    }
+    .with_integrator(stepper);
     let stretch = Material {
         stiffness: s(ROPE_K * LENGTH),
         damping: s(0.5 * LENGTH),
@@ -202,46 +208,56 @@ fn spline_rope<S: dunas::Scalar, const K: usize>(scene: Scene) -> SplineRope<Vec
     r
 }
 
-/// The shape error of the `K`-control-point spline rope in `scene` against the reference.
-fn spline_error<const K: usize>(scene: Scene, reference: &[Vec2<f64>]) -> f64 {
-    let mut r = spline_rope::<f64, K>(scene);
+/// The shape error of the `K`-control-point spline rope in `scene` against the reference,
+/// and its substeps in the first frame.
+fn spline_error<const K: usize, I: SplineStepper>(
+    scene: Scene,
+    stepper: I,
+    reference: &[Vec2<f64>],
+) -> (f64, u16) {
+    let mut r = spline_rope::<f64, K, I>(scene, stepper);
+    let substeps = r.clone().step(DT).map_or(0, |i| i.substeps);
     let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
     for _ in 0..(seconds / DT).round() as usize {
         r.step(DT).expect("stable");
     }
     let mut curve = vec![Vec2::default(); DRAWN_FOR_ERROR];
     let n = r.sample(&mut curve).expect("room");
-    hausdorff(&curve[..n], reference)
+    (hausdorff(&curve[..n], reference), substeps)
+}
+
+/// The median cost of an f32 frame of the swinging 8-control-point spline rope (a 60 Hz step
+/// and 64 points), in ns.
+fn spline_frame_ns<I: SplineStepper>(run: &Run, stepper: I) -> f64 {
+    let mut fast = spline_rope::<f32, 8, I>(Scene::Swing, stepper);
+    for _ in 0..10 {
+        fast.step(DT as f32).expect("stable");
+    }
+    let start = fast.clone();
+    let mut out = [Vec2::<f32>::default(); DRAWN];
+    let mut frames = 0;
+    median_ns(run.reps(), 50, || {
+        frames += 1;
+        if frames % 60 == 0 {
+            fast = start.clone();
+        }
+        fast.step(DT as f32).expect("stable");
+        std::hint::black_box(fast.sample(&mut out).expect("room"));
+    })
 }
 
 /// The spline rope against the 30-particle raw rope, at rest and swinging: shape error
-/// against the 200-particle reference, and cost per f32 frame (a 60 Hz step and 64 points).
+/// against the 200-particle reference, and cost per f32 frame (a 60 Hz step and 64 points),
+/// with each of its steppers.
 fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]) -> String {
     let mut text = String::from(
         "Physics on the curve: `SplineRope` with 8 control points (its state is its drawn curve's control \
-         points) beside the raw 30-particle rope, in the same scenes.\n\n| scene | spline rope (8): ns per frame | \
-         shape error px | raw rope (30): ns per frame | shape error px | cost ratio |\n|---|---|---|---|---|---|\n",
+         points) beside the raw 30-particle rope, in the same scenes; explicit (symplectic Euler, substeps from \
+         the stiffness bound) and implicit (backward Euler, one step a frame).\n\n| scene | stepper | spline rope \
+         (8): ns per frame | shape error px | raw rope (30): ns per frame | shape error px | cost ratio |\n\
+         |---|---|---|---|---|---|---|\n",
     );
     for (k, scene, name) in [(0, Scene::Rest, "rest"), (1, Scene::Swing, "swing")] {
-        let error = spline_error::<8>(scene, &references[k]);
-        let mut fast = spline_rope::<f32, 8>(Scene::Swing);
-        for _ in 0..10 {
-            fast.step(DT as f32).expect("stable");
-        }
-        let start = fast.clone();
-        let mut out = [Vec2::<f32>::default(); DRAWN];
-        let mut frames = 0;
-        let ns = median_ns(run.reps(), 50, || {
-            frames += 1;
-            if frames % 60 == 0 {
-                fast = start.clone();
-            }
-            fast.step(DT as f32).expect("stable");
-            std::hint::black_box(fast.sample(&mut out).expect("room"));
-        });
-        let substeps = spline_rope::<f64, 8>(scene)
-            .step(DT)
-            .map_or(0, |i| i.substeps);
         let raw_substeps = rope::<30, 29>(scene, AnyIntegrator::SymplecticEuler)
             .substeps_for(DT)
             .map_or(0, |(n, _)| n);
@@ -249,33 +265,45 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
             .iter()
             .find(|r| r.n == 30 && r.smoothing == Smoothing::Polyline && r.scene == name);
         let (raw_ns, raw_error) = raw30.map_or((f64::NAN, f64::NAN), |r| (r.ns, r.error));
-        text.push_str(&format!(
-            "| {name} | {ns:.0} ({substeps} substeps) | {} | {raw_ns:.0} ({raw_substeps} substeps) | {} | {:.1}× |\n",
-            num(error),
-            num(raw_error),
-            raw_ns / ns
-        ));
+        let (error, substeps) = spline_error::<8, _>(scene, SymplecticEuler, &references[k]);
+        let ns = spline_frame_ns(run, SymplecticEuler);
+        let (implicit_error, implicit_substeps) =
+            spline_error::<8, _>(scene, ImplicitEuler::default(), &references[k]);
+        let implicit_ns = spline_frame_ns(run, ImplicitEuler::default());
+        for (stepper, ns, substeps, error) in [
+            ("explicit", ns, substeps, error),
+            ("implicit", implicit_ns, implicit_substeps, implicit_error),
+        ] {
+            text.push_str(&format!(
+                "| {name} | {stepper} | {ns:.0} ({substeps} substeps) | {} | {raw_ns:.0} ({raw_substeps} substeps) | \
+                 {} | {:.1}× |\n",
+                num(error),
+                num(raw_error),
+                raw_ns / ns
+            ));
+        }
         if scene == Scene::Swing {
-            let finer = spline_error::<16>(scene, &references[k]);
-            let finer_substeps = spline_rope::<f64, 16>(scene)
-                .step(DT)
-                .map_or(0, |i| i.substeps);
+            let (finer, finer_substeps) =
+                spline_error::<16, _>(scene, SymplecticEuler, &references[k]);
             run.target(
                 "swinging, the 8-control-point spline rope no farther from the 200-particle reference than the raw \
                  30-particle rope, at least 4× cheaper per frame",
                 format!(
-                    "{} px against {} px, {:.1}× cheaper ({ns:.0} ns against {raw_ns:.0}); 16 control points: {} px",
+                    "{} px against {} px, {:.1}× cheaper ({ns:.0} ns against {raw_ns:.0}); 16 control points: {} px; \
+                     implicit: {} px, {:.1}× cheaper",
                     num(error),
                     num(raw_error),
                     raw_ns / ns,
-                    num(finer)
+                    num(finer),
+                    num(implicit_error),
+                    raw_ns / implicit_ns
                 ),
                 error <= raw_error && raw_ns / ns >= 4.0,
                 &format!(
                     "the swing folds the rope near its pin more sharply than 5 cubic spans follow: the error is \
                      the spans' (16 control points come to {} px, at {finer_substeps} substeps a frame); and its \
                      stretch waves ask for substeps (table above), each with 15 square roots, the strain's \
-                     projection and two banded solves",
+                     projection and two banded solves. One implicit step a frame damps the swing instead",
                     num(finer)
                 ),
             );
