@@ -252,8 +252,10 @@ fn sizes(_: &mut Criterion) {
 }
 
 /// The spline rope of 8 control points (the swinging rope's length, mass and whole-rope
-/// stiffness): one substep of 1/240 s, the 64-point curve, and a 60 Hz frame of both.
+/// stiffness): one substep of 1/240 s, the 64-point curve, and a 60 Hz frame of both; the
+/// same frame stepped implicitly (one backward Euler step).
 fn spline_rope(c: &mut Criterion) {
+    use dunas::integrator::ImplicitEuler;
     use dunas::spline_rope::SplineRope;
     let settings = Settings {
         gravity: Vec2::new(0.0, -200.0),
@@ -280,6 +282,21 @@ fn spline_rope(c: &mut Criterion) {
     bench_on(&mut g, "substep8", &r, |r| r.step_once(1.0 / 240.0));
     bench_on(&mut g, "sample64", &r, |r| r.sample(&mut out));
     bench_on(&mut g, "frame8_sample64", &r, |r| {
+        r.step(1.0 / 60.0).unwrap();
+        r.sample(&mut out).unwrap()
+    });
+    let mut implicit: SplineRope<Vec2<f32>, 8, ImplicitEuler> = SplineRope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(70.0, 0.0),
+        7.0,
+        stretch,
+        settings.with_integrator(ImplicitEuler::default()),
+    )
+    .unwrap();
+    for _ in 0..20 {
+        implicit.step(1.0 / 60.0).unwrap();
+    }
+    bench_on(&mut g, "implicit_frame8_sample64", &implicit, |r| {
         r.step(1.0 / 60.0).unwrap();
         r.sample(&mut out).unwrap()
     });
