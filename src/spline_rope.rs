@@ -16,6 +16,8 @@
 //!   the length to hold on `K − 1` averages only (a "B-bar" strain). A rope does not push:
 //!   below 90% of its length it is slack, with a smooth step between (see
 //!   `stretch_tension`);
+//! - **bending** (optional, [`SplineRope::set_bending`]) `½ ∫ EI |x''|² ds`, a constant
+//!   banded matrix;
 //! - **damping** on the projected strain rate, `c · dε̄/dt`, plus air drag `γ·M·v`
 //!   ([`Settings::damping`]);
 //! - **pins** on control points: a clamped end interpolates its control point, so pinning
@@ -156,12 +158,20 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     band: [[f64; 4]; K],
     /// The same in the format, for the implicit stepper's products.
     mass_band: [[P::Scalar; 4]; K],
+    /// The bending band per unit `EI`, `∫ N_i'' N_j'' ds`, in `f64`.
+    curvature: [[f64; 4]; K],
+    /// `EI` times it, in the format: the bending force is `−bend·x`.
+    bend: [[P::Scalar; 4]; K],
+    /// The bending stiffness `EI` (force · length²).
+    bending: P::Scalar,
     material: Material<P::Scalar>,
     settings: Settings<P, I>,
     length: P::Scalar,
     mass: P::Scalar,
-    /// `ω` of the stretch against the mass (rad/s), from power iteration.
+    /// `ω` of the stretch and bending against the mass (rad/s), from power iteration.
     omega: P::Scalar,
+    /// The same for the stretch alone: what the strain damping acts on.
+    stretch_omega: P::Scalar,
     /// The strain damping in force: `material.damping`, at least [`MIN_DAMPING_RATIO`] of
     /// critical on the fastest stretch wave (force · seconds).
     damping: P::Scalar,
@@ -221,11 +231,15 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             gram: [[zero; 4]; K],
             band: [[0.0; 4]; K],
             mass_band: [[zero; 4]; K],
+            curvature: curvature_band::<K>(ds),
+            bend: [[zero; 4]; K],
+            bending: zero,
             material,
             settings,
             length,
             mass,
             omega: zero,
+            stretch_omega: zero,
             damping: zero,
             gamma: zero,
             extra: [P::default(); K],
@@ -276,15 +290,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 P::Scalar::ONE / self.load[i]
             };
         }
-        let m = self.reduced(&self.band);
-        let mut chol = cholesky(&m).ok_or(Error::InvalidParameter)?;
+        let m = self.reduced(&self.band, (0.0, 1.0));
         // The diagonal is kept inverted: a step multiplies where it would divide.
-        for row in &mut chol {
-            row[0] = 1.0 / row[0];
-        }
+        let chol =
+            cholesky(&m, |x| 1.0 / crate::catenary::sqrt(x)).ok_or(Error::InvalidParameter)?;
         self.chol = chol.map(|row| row.map(P::Scalar::from_f64));
         // The stretch's stiffness on the straight rope, `EA·Bᵀ W Π B`: the strain of a
-        // displacement along the rope, projected, back through the slopes.
+        // displacement along the rope, projected, back through the slopes; and the bending.
         let ea = self.material.stiffness.to_f64();
         let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
         let weights = STRETCH_GAUSS.map(|(_, w)| w / 2.0);
@@ -309,15 +321,30 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
             y
         };
-        let lambda = largest_eigenvalue(stiffness, &chol, &self.pinned);
-        let omega = crate::catenary::sqrt(lambda);
-        self.omega = P::Scalar::from_f64(omega);
+        let stretch = largest_eigenvalue(stiffness, &chol, &self.pinned);
+        self.stretch_omega = P::Scalar::from_f64(crate::catenary::sqrt(stretch));
+        let ei = self.bending.to_f64();
+        let lambda = if ei > 0.0 {
+            let curvature = self.curvature;
+            let both = |x: &[f64; K]| -> [f64; K] {
+                let (stretch, bend) = (stiffness(x), band_times(&curvature, x));
+                core::array::from_fn(|i| stretch[i] + ei * bend[i])
+            };
+            largest_eigenvalue(both, &chol, &self.pinned)
+        } else {
+            stretch
+        };
+        self.omega = P::Scalar::from_f64(crate::catenary::sqrt(lambda));
         self.plan_damping()
     }
 
-    /// The strain damping in force and its rate, from `ω`, the material and the accuracy.
+    /// The strain damping in force and its rate, from the stretch's `ω`, the material and
+    /// the accuracy.
     fn plan_damping(&mut self) -> Result<(), Error> {
-        let (ea, omega) = (self.material.stiffness.to_f64(), self.omega.to_f64());
+        let (ea, omega) = (
+            self.material.stiffness.to_f64(),
+            self.stretch_omega.to_f64(),
+        );
         let mut c = self.material.damping.to_f64();
         let explicit = self.settings.integrator.implicit_iterations().is_none();
         if explicit && self.settings.accuracy != Accuracy::Fine {
@@ -333,13 +360,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// `band` with pinned rows and columns made those of the identity.
-    fn reduced(&self, band: &[[f64; 4]; K]) -> [[f64; 4]; K] {
+    fn reduced<T: Copy>(&self, band: &[[T; 4]; K], (zero, one): (T, T)) -> [[T; 4]; K] {
         let mut out = *band;
         for i in 0..K {
             for d in 0..4 {
                 let j = i + d;
                 if j < K && (self.pinned[i] || self.pinned[j]) {
-                    out[i][d] = if d == 0 { 1.0 } else { 0.0 };
+                    out[i][d] = if d == 0 { one } else { zero };
                 }
             }
         }
@@ -371,9 +398,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.time
     }
 
-    /// The highest angular frequency of the stretch against the mass (rad/s, by power
-    /// iteration on the straight rope) and the strain damping's rate (1/s): what the
-    /// substeps are planned from, at the [`Accuracy`]'s fraction of
+    /// The highest angular frequency of the stretch and bending against the mass (rad/s, by
+    /// power iteration on the straight rope) and the strain damping's rate on the fastest
+    /// stretch wave (1/s): what the substeps are planned from, at the [`Accuracy`]'s fraction of
     /// symplectic Euler's limit `ω·h < 2`.
     pub fn stiffness_bound(&self) -> (P::Scalar, P::Scalar) {
         (self.omega, self.gamma)
@@ -395,6 +422,36 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         if let Err(e) = self.plan_damping() {
             self.settings = before;
             self.plan_damping()?;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// The bending stiffness `EI` (force · length²; 0, the default, for a rope).
+    pub fn bending(&self) -> P::Scalar {
+        self.bending
+    }
+
+    /// Sets the bending stiffness `EI` (force · length²): the energy `½ ∫ EI |x''|² ds`, a
+    /// constant banded matrix on the control points (a cable, a hose, a wire). A hanging
+    /// end bends like a cantilever (`tests/spline_rope.rs`: tip deflection within 1% of
+    /// `ρ·g·L⁴ / (8·EI)`). The substep bound is found again (power iteration, `O(K)` per
+    /// round): a stiff `EI` on short spans asks for many substeps, `ω² ∝ EI / (ρ·ds⁴)`;
+    /// the implicit stepper takes it in one.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a negative or non-finite `ei`; [`Error::TooStiff`]
+    /// when the bound is beyond the format. Nothing changes on an error.
+    pub fn set_bending(&mut self, ei: P::Scalar) -> Result<(), Error> {
+        check_non_negative(ei)?;
+        let before = (self.bending, self.bend);
+        self.bending = ei;
+        self.bend = self
+            .curvature
+            .map(|row| row.map(|c| P::Scalar::from_f64(c * ei.to_f64())));
+        if let Err(e) = self.refactor() {
+            (self.bending, self.bend) = before;
+            self.refactor()?;
             return Err(e);
         }
         Ok(())
@@ -504,6 +561,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     fn strains(&self, x: &[P; K], v: &[P; K]) -> Strains<P, K> {
         let zero = P::Scalar::ZERO;
         let mut out = Strains {
+            pos: *x,
             slope: [[P::default(); 3]; K],
             inv: [[zero; 3]; K],
             strain: [[Vec2::new(zero, zero); 3]; K],
@@ -536,6 +594,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut f: [P; K] = core::array::from_fn(|i| self.settings.gravity * self.load[i]);
         for (fi, &e) in f.iter_mut().zip(&self.extra) {
             *fi += e;
+        }
+        if self.bending > P::Scalar::ZERO {
+            let bend = band_times(&self.bend, &st.pos);
+            for (fi, b) in f.iter_mut().zip(bend) {
+                *fi -= b;
+            }
         }
         let (ea, c) = (self.material.stiffness, self.damping);
         let one = P::Scalar::ONE;
@@ -583,6 +647,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             axial: [[if stiffness { ea * h * h } else { zero }; 3]; K],
             transverse: [[zero; 3]; K],
             uniform: t.taut || !stiffness,
+            bend: if stiffness { h } else { zero },
             damping: h * self.damping,
         };
         for e in 0..K - 3 {
@@ -601,9 +666,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         lin
     }
 
-    /// `(h²·K + h·C)·u`: the stretch's stiffness `K` and the strain damping's `C` as
-    /// [`linearized`](Self::linearized), on control-point vectors `u` (matrix-free: one
-    /// projection, two when some span is slack).
+    /// `(h²·K + h·C)·u`: the stretch's and the bending's stiffness `K` and the strain
+    /// damping's `C` as [`linearized`](Self::linearized), on control-point vectors `u`
+    /// (matrix-free: one projection, two when some span is slack).
     fn stiffness_times(&self, lin: &Linearized<P, K>, u: &[P; K]) -> [P; K] {
         let zero = P::Scalar::ZERO;
         let mut slope = [[P::default(); 3]; K];
@@ -642,31 +707,24 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 }
             }
         }
-        out
-    }
-
-    /// `M·u` from the band, free rows only (pinned entries of `u` must be zero).
-    fn mass_times(&self, u: &[P; K]) -> [P; K] {
-        let mut out = [P::default(); K];
-        for i in 0..K {
-            for d in 0..4 {
-                let j = i + d;
-                if j < K {
-                    let m = self.mass_band[i][d];
-                    out[i] += u[j] * m;
-                    if d > 0 {
-                        out[j] += u[i] * m;
-                    }
-                }
+        if self.bending > zero && lin.bend > zero {
+            let h = lin.bend;
+            for (o, b) in out.iter_mut().zip(band_times(&self.bend, u)) {
+                *o += b * h * h;
             }
         }
         out
     }
 
+    /// `M·u` from the band.
+    fn mass_times(&self, u: &[P; K]) -> [P; K] {
+        band_times(&self.mass_band, u)
+    }
+
     /// One backward Euler step of `h` with the generalized forces `field` held: the
     /// positions minimize the incremental potential
     /// `½|x − x₀ − h·v₀|²_M + ½|x − x₀|²_D + h²·(V(x) − fᵀx)`, `D = h·(γ·M + C₀)`
-    /// (air drag, and the strain damping linearized at the start), `V` the stretch energy
+    /// (air drag, and the strain damping linearized at the start), `V` the stretch and bending energy
     /// and `f` gravity, the applied forces and `field`. Newton steps ([`NEWTON`] at most)
     /// from `x₀ + h·v₀`, each solved by conjugate gradient preconditioned with the mass
     /// matrix's factor (`iterations` at most) and cut back by halving until the potential
@@ -693,27 +751,20 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             self.settings.gravity * self.load[i] + self.extra[i] + field[i]
         });
         let mut first = zero;
-        let mut stretch = None;
+        let mut pre = None;
         for _ in 0..NEWTON {
             let (f, t) = self.forces(&st);
             let dx: [P; K] = core::array::from_fn(|i| x[i] - target[i]);
             let moved: [P; K] = core::array::from_fn(|i| x[i] - x0[i]);
             let (m, d) = (self.mass_times(&dx), damp(&moved));
-            // `h²·∇Φ`: the stretch's share of it is in `f`.
+            // `h²·∇Φ`: the stretch's and bending's share of it is in `f`.
             let gradient = self.free(core::array::from_fn(|i| {
                 m[i] + d[i] - (f[i] + field[i]) * h * h
             }));
             let lin = self.linearized(&st, &t, h, true);
-            // The stretch's solve, built once a step: a preconditioner needs no update.
-            // It subtracts terms `h²·ω²` times larger than its result: past the format's
-            // precision (`h²·ω² > 8·10³` in `f32`), the mass alone preconditions.
-            if first == zero
-                && self.omega * h * self.omega * h * P::Scalar::EPSILON <= P::Scalar::ratio(1, 1024)
-            {
-                stretch = self.stretch_solve(&lin, h, drag);
-            }
-            let step =
-                self.conjugate_gradient((&lin, stretch.as_ref()), drag, &gradient, iterations);
+            // Built once a step: a preconditioner needs no update.
+            let pre = pre.get_or_insert_with(|| self.preconditioner(&lin, h, drag));
+            let step = self.conjugate_gradient((&lin, pre), drag, &gradient, iterations);
             // `−slope` is the Newton decrement: what a full step promises the potential.
             let slope = dot(&step, &gradient);
             if first == zero {
@@ -735,14 +786,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 x = core::array::from_fn(|i| x[i] + step[i]);
                 st = self.strains(&x, &still);
             } else {
-                let energy = self.stretch_potential(&st);
+                let energy = self.elastic_potential(&st);
                 let mut accepted = false;
                 for _ in 0..LINE_SEARCH {
                     let trial: [P; K] = core::array::from_fn(|i| x[i] + step[i] * alpha);
                     let trial_st = self.strains(&trial, &still);
                     let change = alpha * linear
                         + P::Scalar::ratio(1, 2) * alpha * alpha * curve
-                        + (self.stretch_potential(&trial_st) - energy) * h * h;
+                        + (self.elastic_potential(&trial_st) - energy) * h * h;
                     // Armijo: a quarter of what the slope promises.
                     if change <= alpha * slope * P::Scalar::ratio(1, 4) {
                         (x, st, accepted) = (trial, trial_st, true);
@@ -781,7 +832,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// then left to iterate on is the sideways stiffness and the slack spans.
     fn conjugate_gradient(
         &self,
-        (lin, stretch): (&Linearized<P, K>, Option<&StretchSolve<P, K>>),
+        (lin, pre): (&Linearized<P, K>, &Preconditioner<P, K>),
         drag: P::Scalar,
         b: &[P; K],
         iterations: u8,
@@ -790,7 +841,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
         let mut r = self.free(b.map(|bi| -bi));
         let mut out = [P::default(); K];
-        let mut z = self.precondition(stretch, drag, &r);
+        let mut z = self.precondition(pre, &r);
         let mut p = z;
         let mut rz = dot(&r, &z);
         let tolerance = rz * converged::<P::Scalar>();
@@ -811,7 +862,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 out[i] += p[i] * alpha;
                 r[i] -= ap[i] * alpha;
             }
-            z = self.precondition(stretch, drag, &r);
+            z = self.precondition(pre, &r);
             let next = dot(&r, &z);
             let beta = next / rz;
             for i in 0..K {
@@ -860,20 +911,19 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The taut stretch and its damping, `(h²·EA + h·c)·ds·Bᵀ G⁻¹ B` (`G` the quadratic
-    /// splines' Gram matrix), beside the mass `M' = M·(1 + drag)`, solved by Woodbury:
+    /// splines' Gram matrix), beside the banded `M'` (factor `banded`), solved by Woodbury:
     /// `(M' + Bᵀ D⁻¹ B)⁻¹ = M'⁻¹ − M'⁻¹Bᵀ (D + B M'⁻¹ Bᵀ)⁻¹ B M'⁻¹`, `D = G / ((h²·EA + h·c)·ds)`.
     /// `K` banded solves and a dense `K × K` factor; `None` when that is not positive
-    /// definite (rounding), and the mass alone preconditions.
+    /// definite (rounding), and `M'` alone preconditions.
     fn stretch_solve(
         &self,
         lin: &Linearized<P, K>,
         h: P::Scalar,
-        drag: P::Scalar,
+        banded: &[[P::Scalar; 4]; K],
     ) -> Option<StretchSolve<P, K>> {
         let zero = P::Scalar::ZERO;
         let spans = P::Scalar::from_i16((K - 3) as i16);
         let scale = (self.material.stiffness * h * h + lin.damping) * (self.length / spans);
-        let inv_mass = P::Scalar::ONE / (P::Scalar::ONE + drag);
         let mut out = StretchSolve {
             dir: lin.dir,
             columns: [[P::default(); K]; K],
@@ -894,8 +944,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         for a in 0..K {
             let mut unit = [zero; K];
             unit[a] = P::Scalar::ONE;
-            let mut column = self.strain_pull(&lin.dir, &unit).map(|p| p * inv_mass);
-            solve(&self.chol, &mut column);
+            let mut column = self.strain_pull(&lin.dir, &unit);
+            solve(banded, &mut column);
             let strains = self.strain_weights(&lin.dir, &column);
             for (b, &s) in strains.iter().enumerate() {
                 out.factor[b][a] += s;
@@ -905,16 +955,42 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         dense_cholesky(&mut out.factor).then_some(out)
     }
 
-    /// `P⁻¹·r` for the conjugate gradient: the mass, and the stretch when `stretch` is there.
-    fn precondition(
+    /// The conjugate gradient's preconditioner for a step of `h`: the banded
+    /// `M' = M·(1 + drag) + h²·EI·B` factored (the mass's factor if rounding stops that), and
+    /// the taut stretch beside it ([`stretch_solve`](Self::stretch_solve)) while
+    /// `h²·ω²·ε ≤ 2⁻¹⁰` (`ε` the format's epsilon: `h²·ω² ≤ 8·10³` in `f32`): its solve
+    /// subtracts terms `h²·ω²` times larger than its result.
+    fn preconditioner(
         &self,
-        stretch: Option<&StretchSolve<P, K>>,
+        lin: &Linearized<P, K>,
+        h: P::Scalar,
         drag: P::Scalar,
-        r: &[P; K],
-    ) -> [P; K] {
-        let mut z = r.map(|ri| ri * (P::Scalar::ONE / (P::Scalar::ONE + drag)));
-        solve(&self.chol, &mut z);
-        if let Some(stretch) = stretch {
+    ) -> Preconditioner<P, K> {
+        let one = P::Scalar::ONE;
+        let mut band = self.mass_band.map(|row| row.map(|m| m * (one + drag)));
+        if self.bending > P::Scalar::ZERO {
+            for (row, bend) in band.iter_mut().zip(&self.bend) {
+                for (a, &b) in row.iter_mut().zip(bend) {
+                    *a += b * h * h;
+                }
+            }
+        }
+        let band = self.reduced(&band, (P::Scalar::ZERO, one));
+        let banded = cholesky(&band, |x| one / x.sqrt()).unwrap_or(self.chol);
+        let stiff = self.omega * h * self.omega * h * P::Scalar::EPSILON;
+        let stretch = if stiff <= P::Scalar::ratio(1, 1024) {
+            self.stretch_solve(lin, h, &banded)
+        } else {
+            None
+        };
+        Preconditioner { banded, stretch }
+    }
+
+    /// `P⁻¹·r` for the conjugate gradient.
+    fn precondition(&self, pre: &Preconditioner<P, K>, r: &[P; K]) -> [P; K] {
+        let mut z = self.free(*r);
+        solve(&pre.banded, &mut z);
+        if let Some(stretch) = &pre.stretch {
             let mut c = self.strain_weights(&stretch.dir, &z);
             dense_solve(&stretch.factor, &mut c);
             for (column, &ca) in stretch.columns.iter().zip(&c) {
@@ -926,12 +1002,18 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.free(z)
     }
 
-    /// The stretch energy at strains `st`.
-    fn stretch_potential(&self, st: &Strains<P, K>) -> P::Scalar {
+    /// The stretch and bending energy at strains `st`.
+    fn elastic_potential(&self, st: &Strains<P, K>) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
         for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
             for (strain, &(wds, _)) in span.iter().zip(quad) {
                 e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain.x) * wds;
+            }
+        }
+        if self.bending > P::Scalar::ZERO {
+            let bend = band_times(&self.bend, &st.pos);
+            for (p, b) in st.pos.iter().zip(bend) {
+                e += p.dot(b) * P::Scalar::ratio(1, 2);
             }
         }
         e
@@ -953,7 +1035,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
         }
         e += P::Scalar::from_f64(kinetic / 2.0);
-        e += self.stretch_potential(&self.strains(&self.pos, &self.vel));
+        e += self.elastic_potential(&self.strains(&self.pos, &self.vel));
         for (p, &m) in self.pos.iter().zip(&self.load) {
             e -= self.settings.gravity.dot(*p) * m;
         }
@@ -1247,6 +1329,8 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
 
 /// The stretch at a rope's stretch points: see [`SplineRope::strains`].
 struct Strains<P: Point, const K: usize> {
+    /// The control points they were taken at.
+    pos: [P; K],
     slope: [[P; 3]; K],
     inv: [[P::Scalar; 3]; K],
     strain: [[Vec2<P::Scalar>; 3]; K],
@@ -1256,6 +1340,13 @@ struct Strains<P: Point, const K: usize> {
 struct Tensions<S, const K: usize> {
     tension: [[S; 3]; K],
     taut: bool,
+}
+
+/// The implicit step's preconditioner: see [`SplineRope::preconditioner`].
+struct Preconditioner<P: Point, const K: usize> {
+    /// The factor of `M·(1 + drag) + h²·EI·B` as [`cholesky`] gives it.
+    banded: [[P::Scalar; 4]; K],
+    stretch: Option<StretchSolve<P, K>>,
 }
 
 /// The implicit step's preconditioner for the stretch: see [`SplineRope::stretch_solve`].
@@ -1276,6 +1367,8 @@ struct Linearized<P: Point, const K: usize> {
     transverse: [[P::Scalar; 3]; K],
     /// Every `axial` is `h²·EA`: the projected strain needs no second projection.
     uniform: bool,
+    /// `h` where the bending's `h²·EI·B` is in, else 0.
+    bend: P::Scalar,
     /// `h·c`, the strain damping's share.
     damping: P::Scalar,
 }
@@ -1454,10 +1547,7 @@ fn projection_tables<const K: usize>() -> Option<([[[f64; 3]; 3]; K], [[f64; 4];
             }
         }
     }
-    let mut chol = cholesky(&gram)?;
-    for row in &mut chol {
-        row[0] = 1.0 / row[0];
-    }
+    let chol = cholesky(&gram, |x| 1.0 / crate::catenary::sqrt(x))?;
     Some((proj, chol))
 }
 
@@ -1479,34 +1569,82 @@ fn extraction(e: usize, k: usize) -> [[f64; 4]; 4] {
     })
 }
 
+/// `A·u` for a symmetric `band` (`band[i][d] = A[i][i+d]`).
+fn band_times<T, S: Copy, const K: usize>(band: &[[S; 4]; K], u: &[T; K]) -> [T; K]
+where
+    T: Copy + Default + core::ops::AddAssign + Mul<S, Output = T>,
+{
+    let mut out = [T::default(); K];
+    for i in 0..K {
+        for d in 0..4 {
+            let j = i + d;
+            if j < K {
+                let a = band[i][d];
+                out[i] += u[j] * a;
+                if d > 0 {
+                    out[j] += u[i] * a;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The bending band per unit `EI`: `∫ N_i'' N_j'' ds` (`band[i][d]` for `j = i + d`), from
+/// each span's Bézier extraction (`x'' = 6·((1−t)·Δ²b_0 + t·Δ²b_1) / ds²`), by 4-point
+/// Gauss (exact: the integrand is quadratic).
+fn curvature_band<const K: usize>(ds: f64) -> [[f64; 4]; K] {
+    let mut band = [[0.0; 4]; K];
+    for e in 0..K - 3 {
+        let ext = extraction(e, K);
+        let second = |r: usize, k: usize| ext[r][k] - 2.0 * ext[r + 1][k] + ext[r + 2][k];
+        for &(xi, w) in &GAUSS {
+            let t = (xi + 1.0) / 2.0;
+            let n: [f64; 4] = core::array::from_fn(|k| {
+                6.0 * ((1.0 - t) * second(0, k) + t * second(1, k)) / (ds * ds)
+            });
+            for a in 0..4 {
+                for b in a..4 {
+                    band[e + a][b - a] += n[a] * n[b] * w * ds / 2.0;
+                }
+            }
+        }
+    }
+    band
+}
+
 /// Banded Cholesky of a symmetric positive-definite `band` (`band[i][d] = A[i][i+d]`):
-/// `L[i][i-d]` in `out[i][d]`; `None` when it is not positive definite.
-fn cholesky<const K: usize>(band: &[[f64; 4]; K]) -> Option<[[f64; 4]; K]> {
-    let a = |i: usize, j: usize| -> f64 {
-        let (lo, hi) = (i.min(j), i.max(j));
-        if hi - lo < 4 { band[lo][hi - lo] } else { 0.0 }
-    };
-    let mut l = [[0.0f64; 4]; K];
+/// `L[i][i-d]` in `out[i][d]`, except the diagonal, `1 / L[i][i]` from `inverse_sqrt`;
+/// `None` when it is not positive definite (or rounding makes it seem not).
+fn cholesky<S, const K: usize>(
+    band: &[[S; 4]; K],
+    inverse_sqrt: impl Fn(S) -> S,
+) -> Option<[[S; 4]; K]>
+where
+    S: Copy + Default + PartialOrd + Sub<Output = S> + Mul<Output = S>,
+{
+    let zero = S::default();
+    let mut l = [[zero; 4]; K];
     for i in 0..K {
         for d in (0..4).rev() {
             if d > i {
                 continue;
             }
             let j = i - d;
-            let mut sum = a(i, j);
+            let mut sum = band[j][d];
             for k in 1..4 {
                 // Σ over m < j of L[i][m] L[j][m], within the band.
                 if d + k < 4 && k <= j {
-                    sum -= l[i][d + k] * l[j][k];
+                    sum = sum - l[i][d + k] * l[j][k];
                 }
             }
             if d == 0 {
-                if sum.is_nan() || sum <= 0.0 {
+                if sum.partial_cmp(&zero) != Some(core::cmp::Ordering::Greater) {
                     return None;
                 }
-                l[i][0] = crate::catenary::sqrt(sum);
+                l[i][0] = inverse_sqrt(sum);
             } else {
-                l[i][d] = sum / l[j][0];
+                l[i][d] = sum * l[j][0];
             }
         }
     }
@@ -1682,6 +1820,7 @@ mod tests {
         use crate::Vec2;
         for stretch in [1.07, 0.93] {
             let mut r = rope(Vec2::new(0.3, -9.81));
+            r.set_bending(0.3).unwrap();
             for i in 0..8 {
                 let p = r.pos[i];
                 r.pos[i] = Vec2::new(
@@ -1732,8 +1871,8 @@ mod tests {
         }
     }
 
-    /// On a taut rope, the stretch preconditioner inverts the system but for its sideways
-    /// stiffness: with that left out, `P⁻¹·A·u = u`.
+    /// On a taut rope that bends, the preconditioner inverts the system but for its
+    /// sideways stiffness: with that left out, `P⁻¹·A·u = u`.
     #[test]
     fn the_stretch_preconditioner_solves_the_taut_stretch() {
         use crate::Vec2;
@@ -1756,11 +1895,12 @@ mod tests {
             let u = r.free(core::array::from_fn(|i| {
                 Vec2::new((i as f64).sin(), (i as f64 * 2.1).cos())
             }));
+            r.set_bending(0.5).unwrap();
             let (m, k) = (r.mass_times(&u), r.stiffness_times(&lin, &u));
             let au = r.free(core::array::from_fn(|i| m[i] * (1.0 + drag) + k[i]));
-            let stretch = r.stretch_solve(&lin, h, drag);
-            assert!(stretch.is_some());
-            let back = r.precondition(stretch.as_ref(), drag, &au);
+            let pre = r.preconditioner(&lin, h, drag);
+            assert!(pre.stretch.is_some());
+            let back = r.precondition(&pre, &au);
             for i in 0..8 {
                 assert!(
                     (back[i] - u[i]).length() < 1e-8,
@@ -1790,6 +1930,7 @@ mod tests {
     fn forces_are_the_energy_gradient() {
         use crate::Vec2;
         let mut r = rope(Vec2::new(0.3, -9.81));
+        r.set_bending(0.3).unwrap();
         for i in 0..8 {
             let p = r.pos[i];
             r.pos[i] = Vec2::new(

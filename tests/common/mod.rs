@@ -5,7 +5,7 @@ use dunas::Settings;
 use dunas::integrator::AnyIntegrator;
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::{Bezier, MassSpring, Point, Scalar, Vec2};
+use dunas::{Accuracy, Bezier, MassSpring, Point, Scalar, Vec2};
 
 /// Control points on a grid of `1 / DENOM`: exactly representable in f32, f64 and Q16.
 pub const DENOM: i64 = 16;
@@ -439,4 +439,80 @@ pub fn spline_rope_sag<const K: usize, I: dunas::spline_rope::SplineStepper>(
     let mut curve = [Vec2::default(); 401];
     let n = rope.sample(&mut curve).expect("room");
     -curve[..n].iter().map(|p| p.y).fold(f64::INFINITY, f64::min)
+}
+
+/// A 1 m, 1 kg cantilever of bending stiffness `EI = 100 N·m²` (stretch `EA = 10⁴ N`, strain
+/// damping 10 N·s, drag 5/s) stepped by `stepper`: 8 control points built level, clamped by
+/// pinning the first two (the end's tangent), under `gravity`.
+fn cantilever<I: dunas::spline_rope::SplineStepper>(
+    stepper: I,
+    gravity: f64,
+) -> dunas::spline_rope::SplineRope<Vec2<f64>, 8, I> {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -gravity),
+        damping: 5.0,
+        ..Settings::default()
+    }
+    .with_integrator(stepper);
+    let stretch = Material {
+        stiffness: 1e4,
+        damping: 10.0,
+    };
+    let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0));
+    let mut beam = dunas::spline_rope::SplineRope::new(start, end, 1.0, stretch, settings)
+        .expect("a valid rope");
+    beam.set_bending(100.0).expect("a valid stiffness");
+    beam.set_pinned(1, true).expect("in range");
+    beam
+}
+
+/// Beam theory's tip deflection of that cantilever under `g = 9.81`: `ρ·g·L⁴ / (8·EI)`.
+pub fn cantilever_sag_exact() -> f64 {
+    9.81 / (8.0 * 100.0)
+}
+
+/// The cantilever's tip deflection (m) after settling 10 s under `g = 9.81`.
+pub fn cantilever_sag<I: dunas::spline_rope::SplineStepper>(stepper: I) -> f64 {
+    let mut beam = cantilever(stepper, 9.81);
+    for _ in 0..600 {
+        beam.step(1.0 / 60.0).expect("stable");
+    }
+    -beam.positions()[7].y
+}
+
+/// The cantilever's first mode (rad/s, measured, and beam theory's `1.8751²·√(EI/(ρL⁴))`):
+/// settled under gravity, released with gravity off and no damping at `Accuracy::Fine`, the
+/// mean period of the tip's upward crossings of the axis over 20 periods.
+pub fn cantilever_first_mode() -> (f64, f64) {
+    let mut beam = cantilever(dunas::integrator::SymplecticEuler, 9.81);
+    for _ in 0..600 {
+        beam.step(1.0 / 60.0).expect("stable");
+    }
+    beam.set_settings(Settings {
+        accuracy: Accuracy::Fine,
+        ..Settings::default()
+    })
+    .expect("valid settings");
+    for i in 0..8 {
+        beam.set_velocity(i, Vec2::default()).expect("in range");
+    }
+    let h = 1.0 / 4000.0;
+    let (mut last, mut time) = (beam.positions()[7].y, 0.0);
+    let (mut crossings, mut first, mut latest) = (0, 0.0, 0.0);
+    while crossings < 21 && time < 5.0 {
+        let info = beam.step(h).expect("stable");
+        assert!(!info.slow_motion, "the substeps stay under their cap");
+        time += h;
+        let y = beam.positions()[7].y;
+        if last < 0.0 && y >= 0.0 {
+            latest = time - h * y / (y - last);
+            if crossings == 0 {
+                first = latest;
+            }
+            crossings += 1;
+        }
+        last = y;
+    }
+    let measured = 2.0 * std::f64::consts::PI * (crossings - 1).max(1) as f64 / (latest - first);
+    (measured, 1.875_104_068_711_961_f64.powi(2) * 10.0)
 }
