@@ -344,7 +344,8 @@ fn bad_input_is_an_error() {
 }
 
 /// Q16.16 follows f64 on a rope in pixels (70 px, 7 mass units, gravity 200 px/s²): within
-/// 2 px after two seconds of swinging.
+/// 2 px after two seconds of swinging, with either stepper (measured 0.15 px explicit, 0.01 px
+/// implicit).
 #[test]
 fn q16_follows_f64_in_pixels() {
     fn swing<S: Scalar, I: SplineStepper>(stepper: I) -> [f64; 2] {
