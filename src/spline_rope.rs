@@ -764,7 +764,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let lin = self.linearized(&st, &t, h, true);
             // Built once a step: a preconditioner needs no update.
             let pre = pre.get_or_insert_with(|| self.preconditioner(&lin, h, drag));
-            let step = self.conjugate_gradient((&lin, pre), drag, &gradient, iterations);
+            let mut step = self.conjugate_gradient((&lin, pre), drag, &gradient, iterations);
             if P::Scalar::FIXED_POINT {
                 // `Q16` cannot resolve the potential's changes: one Newton step, taken
                 // whole (linearized backward Euler).
@@ -772,7 +772,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 break;
             }
             // `−slope` is the Newton decrement: what a full step promises the potential.
-            let slope = dot(&step, &gradient);
+            let mut slope = dot(&step, &gradient);
+            if slope >= zero {
+                // Rounding spoilt the solve (`h²·ω²` far past the format): the preconditioned
+                // gradient still goes downhill.
+                step = self.precondition(pre, &gradient.map(|g| -g));
+                slope = dot(&step, &gradient);
+            }
             if first == zero {
                 first = -slope;
             }
