@@ -158,8 +158,6 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     band: [[f64; 4]; K],
     /// The same in the format, for the implicit stepper's products.
     mass_band: [[P::Scalar; 4]; K],
-    /// The bending band per unit `EI`, `∫ N_i'' N_j'' ds`, in `f64`.
-    curvature: [[f64; 4]; K],
     /// `EI` times it, in the format: the bending force is `−bend·x`.
     bend: [[P::Scalar; 4]; K],
     /// The bending stiffness `EI` (force · length²).
@@ -231,7 +229,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             gram: [[zero; 4]; K],
             band: [[0.0; 4]; K],
             mass_band: [[zero; 4]; K],
-            curvature: curvature_band::<K>(ds),
             bend: [[zero; 4]; K],
             bending: zero,
             material,
@@ -303,34 +300,41 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let quad = self
             .quad
             .map(|span| span.map(|(w, dn)| (w.to_f64(), dn.map(|d| d.to_f64()))));
-        let stiffness = |x: &[f64; K]| -> [f64; K] {
-            let mut strain = [[0.0; 3]; K];
-            for e in 0..K - 3 {
-                for (q, (_, dn)) in quad[e].iter().enumerate() {
-                    strain[e][q] = (0..4).map(|k| dn[k] * x[e + k]).sum();
-                }
-            }
-            project(&proj, &weights, &gram, &mut strain);
-            let mut y = [0.0; K];
-            for e in 0..K - 3 {
-                for (q, (wds, dn)) in quad[e].iter().enumerate() {
-                    for k in 0..4 {
-                        y[e + k] += ea * wds * strain[e][q] * dn[k];
+        // `EI` 0 for the stretch alone; one closure type, so one power iteration is linked.
+        let ei = self.bending.to_f64();
+        let curvature = if ei > 0.0 {
+            curvature_band::<K>(self.length.to_f64() / (K - 3) as f64)
+        } else {
+            [[0.0; 4]; K]
+        };
+        let stiffness = |ei: f64| {
+            move |x: &[f64; K]| -> [f64; K] {
+                let mut strain = [[0.0; 3]; K];
+                for e in 0..K - 3 {
+                    for (q, (_, dn)) in quad[e].iter().enumerate() {
+                        strain[e][q] = (0..4).map(|k| dn[k] * x[e + k]).sum();
                     }
                 }
+                project(&proj, &weights, &gram, &mut strain);
+                let mut y = if ei > 0.0 {
+                    band_times(&curvature, x).map(|b| ei * b)
+                } else {
+                    [0.0; K]
+                };
+                for e in 0..K - 3 {
+                    for (q, (wds, dn)) in quad[e].iter().enumerate() {
+                        for k in 0..4 {
+                            y[e + k] += ea * wds * strain[e][q] * dn[k];
+                        }
+                    }
+                }
+                y
             }
-            y
         };
-        let stretch = largest_eigenvalue(stiffness, &chol, &self.pinned);
+        let stretch = largest_eigenvalue(stiffness(0.0), &chol, &self.pinned);
         self.stretch_omega = P::Scalar::from_f64(crate::catenary::sqrt(stretch));
-        let ei = self.bending.to_f64();
         let lambda = if ei > 0.0 {
-            let curvature = self.curvature;
-            let both = |x: &[f64; K]| -> [f64; K] {
-                let (stretch, bend) = (stiffness(x), band_times(&curvature, x));
-                core::array::from_fn(|i| stretch[i] + ei * bend[i])
-            };
-            largest_eigenvalue(both, &chol, &self.pinned)
+            largest_eigenvalue(stiffness(ei), &chol, &self.pinned)
         } else {
             stretch
         };
@@ -446,9 +450,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         check_non_negative(ei)?;
         let before = (self.bending, self.bend);
         self.bending = ei;
-        self.bend = self
-            .curvature
-            .map(|row| row.map(|c| P::Scalar::from_f64(c * ei.to_f64())));
+        let ds = self.length.to_f64() / (K - 3) as f64;
+        self.bend =
+            curvature_band::<K>(ds).map(|row| row.map(|c| P::Scalar::from_f64(c * ei.to_f64())));
         if let Err(e) = self.refactor() {
             (self.bending, self.bend) = before;
             self.refactor()?;
