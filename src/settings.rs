@@ -1,11 +1,11 @@
 //! What a system is told once: gravity, damping, scene bounds, integrator and accuracy.
 
-use crate::integrator::{Integrator, SymplecticEuler};
+use crate::integrator::SymplecticEuler;
 use crate::{Error, Point, Scalar};
 
 /// How close to its stability limit an explicit integrator runs: the one knob that trades
 /// cost for accuracy. [`MassSpring::step`](crate::MassSpring::step) picks the substeps so
-/// that `ω·h` stays at this fraction of [`Integrator::stability_limit`] (`ω` the stiffest
+/// that `ω·h` stays at this fraction of [`Integrator::stability_limit`](crate::Integrator::stability_limit) (`ω` the stiffest
 /// spring's angular frequency, `h` the substep). Substeps, and so the cost, grow as
 /// `1 / fraction`. Implicit Euler and XPBD are stable at any step and take one substep
 /// whatever the level.
@@ -80,9 +80,11 @@ pub struct Settings<P: Point, I = SymplecticEuler> {
 }
 
 impl<P: Point, I> Settings<P, I> {
-    /// The same settings with another integrator: the way to pick one other than the
-    /// default, `Settings { gravity, ..Settings::default() }.with_integrator(Verlet)`.
-    pub fn with_integrator<J: Integrator>(self, integrator: J) -> Settings<P, J> {
+    /// The same settings with another integrator (an [`Integrator`](crate::Integrator) for a
+    /// `MassSpring`, a [`SplineStepper`](crate::spline_rope::SplineStepper) for a
+    /// `SplineRope`): the way to pick one other than the default,
+    /// `Settings { gravity, ..Settings::default() }.with_integrator(Verlet)`.
+    pub fn with_integrator<J>(self, integrator: J) -> Settings<P, J> {
         Settings {
             integrator,
             accuracy: self.accuracy,

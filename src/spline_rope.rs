@@ -30,8 +30,8 @@
 //! Steps are symplectic Euler with substeps from the largest generalized eigenvalue of the
 //! projected stretch stiffness against the mass (found by power iteration at construction
 //! and when pins change), at the [`Accuracy`]'s fraction of the limit; or, chosen by type,
-//! backward Euler by Newton's method on the step's incremental potential, one step a frame
-//! at any stiffness (see [`SplineStepper`]).
+//! backward Euler or BDF2 by Newton's method on the step's incremental potential, one step a
+//! frame at any stiffness (see [`SplineStepper`]).
 //!
 //! Accuracy, against the continuum (`tests/spline_rope.rs`): with 8 control points a hanging
 //! rope's first three lateral modes are within 0.01%, 0.01% and 0.02% of `(j_n / 2)·√(g/L)`
@@ -102,7 +102,7 @@ use core::ops::{Mul, Sub};
 
 use crate::contact::{Contacts, DrawnSpans};
 use crate::force::{Accelerations, Bodies, ForceField};
-use crate::integrator::{ImplicitEuler, Integrator, SymplecticEuler};
+use crate::integrator::{ImplicitEuler, SymplecticEuler};
 use crate::sampler::bernstein_weights;
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
@@ -175,6 +175,9 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     damping: P::Scalar,
     /// The strain damping's rate, `(c / EA)·ω²` (1/s).
     gamma: P::Scalar,
+    /// The last implicit step's start and length, for [`Bdf2`]; `None` after a change
+    /// from outside.
+    history: Option<([P; K], [P; K], P::Scalar)>,
     /// Generalized forces applied for the next step ([`apply_force`](Self::apply_force)).
     extra: [P; K],
     time: P::Scalar,
@@ -239,6 +242,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             stretch_omega: zero,
             damping: zero,
             gamma: zero,
+            history: None,
             extra: [P::default(); K],
             time: zero,
         };
@@ -350,7 +354,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             self.stretch_omega.to_f64(),
         );
         let mut c = self.material.damping.to_f64();
-        let explicit = self.settings.integrator.implicit_iterations().is_none();
+        let explicit = self.settings.integrator.implicit().is_none();
         if explicit && self.settings.accuracy != Accuracy::Fine {
             c = c.max(MIN_DAMPING_RATIO * 2.0 * ea / omega);
         }
@@ -483,6 +487,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         if pinned {
             self.vel[i] = P::default();
         }
+        self.history = None;
         Ok(())
     }
 
@@ -494,6 +499,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         check_index(i, K)?;
         check_points(&[p])?;
         self.pos[i] = p;
+        self.history = None;
         Ok(())
     }
 
@@ -505,6 +511,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         check_index(i, K)?;
         check_points(&[v])?;
         self.vel[i] = v;
+        self.history = None;
         Ok(())
     }
 
@@ -521,6 +528,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let v = (p - self.pos[i]) * (P::Scalar::ONE / dt);
         check_points(&[v])?;
         (self.pos[i], self.vel[i]) = (p, v);
+        self.history = None;
         Ok(())
     }
 
@@ -725,18 +733,24 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         band_times(&self.mass_band, u)
     }
 
-    /// One backward Euler step of `h` with the generalized forces `field` held: the new
-    /// velocities `w` minimize the step's incremental potential
+    /// The new velocities `w` of one backward Euler step of `h` from `x0`, `v0` with the
+    /// generalized forces `field` held: they minimize the step's incremental potential
     /// `½|w − v₀|²_M + ½|w|²_D + V(x₀ + h·w) − fᵀ(x₀ + h·w)`, `D = h·(γ·M + C₀)` (air drag,
     /// and the strain damping linearized at the start), `V` the stretch and bending energy
-    /// and `f` gravity, the applied forces and `field`; then `x = x₀ + h·w`. Newton steps
-    /// ([`NEWTON`] at most) from `w = v₀`, each solved by [`conjugate_gradient`]
+    /// and `f` gravity, the applied forces and `field`; the positions are `x₀ + h·w`. Newton
+    /// steps ([`NEWTON`] at most) from `w = v₀`, each solved by [`conjugate_gradient`]
     /// (`iterations` at most) and halved until the potential falls (in `Q16` one, whole).
     ///
     /// [`conjugate_gradient`]: Self::conjugate_gradient
-    fn implicit_step(&mut self, h: P::Scalar, field: &[P; K], iterations: u8) {
+    fn backward_euler(
+        &self,
+        (x0, v0): (&[P; K], &[P; K]),
+        h: P::Scalar,
+        field: &[P; K],
+        iterations: u8,
+    ) -> [P; K] {
         let zero = P::Scalar::ZERO;
-        let (x0, v0) = (self.pos, self.free(self.vel));
+        let (x0, v0) = (*x0, *v0);
         let still = [P::default(); K];
         let start = self.strains(&x0, &v0);
         let (_, t0) = self.forces(&start);
@@ -814,7 +828,54 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 break;
             }
         }
-        let x = at(&w);
+        w
+    }
+
+    /// Whether BDF2 holds its energy at a step of `h`: `h²·ω² ≤ 2²²` (measured: a 1 m, 1 kg
+    /// rope of 8 control points gains none at `EA = 10⁷ N`, `h²·ω² ≈ 3·10⁶`, and gains at
+    /// `3·10⁷ N`), and in the format's precision `h²·ω²·ε ≤ 2⁻¹⁰` (in `f32`, `h²·ω² ≤ 8·10³`).
+    /// Never in `Q16`, whose one linearized Newton step lets BDF2 drift (8 px in 2 s on a
+    /// 70 px rope, where backward Euler stays within 0.01 px of `f64`).
+    fn bdf2_holds(&self, h: P::Scalar) -> bool {
+        let stiffness = self.omega * h * self.omega * h;
+        !P::Scalar::FIXED_POINT
+            && stiffness.to_f64() <= f64::from(1u32 << 22)
+            && stiffness * P::Scalar::EPSILON <= P::Scalar::ratio(1, 1024)
+    }
+
+    /// One implicit step of `h` with the generalized forces `field` held: backward Euler, or
+    /// with `second_order` BDF2 when the last step was one of the same `h` and
+    /// [`bdf2_holds`](Self::bdf2_holds) (else backward Euler). BDF2 is a [`backward_euler`](Self::backward_euler) solve of `⅔·h`
+    /// from `(4·x₀ − x₋₁)/3` and `(4·v₀ − v₋₁)/3`: the same cost, second order, and it still
+    /// damps what a step cannot resolve.
+    fn implicit_step(
+        &mut self,
+        h: P::Scalar,
+        field: &[P; K],
+        (iterations, second_order): (u8, bool),
+    ) {
+        let (x0, v0) = (self.pos, self.free(self.vel));
+        let along = |x: &[P; K], v: &[P; K], h: P::Scalar| -> [P; K] {
+            core::array::from_fn(|i| x[i] + v[i] * h)
+        };
+        let (x, w) = match self.history {
+            Some((xp, vp, hp)) if second_order && hp == h && self.bdf2_holds(h) => {
+                let step = h * P::Scalar::ratio(2, 3);
+                let third = P::Scalar::ratio(1, 3);
+                let four = P::Scalar::from_i16(4);
+                let xs: [P; K] = core::array::from_fn(|i| (x0[i] * four - xp[i]) * third);
+                let vs: [P; K] = core::array::from_fn(|i| (v0[i] * four - vp[i]) * third);
+                let w = self.backward_euler((&xs, &self.free(vs)), step, field, iterations);
+                (along(&xs, &w, step), w)
+            }
+            _ => {
+                let w = self.backward_euler((&x0, &v0), h, field, iterations);
+                (along(&x0, &w, h), w)
+            }
+        };
+        if second_order {
+            self.history = Some((x0, v0, h));
+        }
         for i in 0..K {
             if !self.pinned[i] {
                 (self.pos[i], self.vel[i]) = (x[i], w[i]);
@@ -1026,25 +1087,15 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         e
     }
 
-    /// Total energy: kinetic `½ vᵀMv`, stretch (zero at the rest length), and gravity's
-    /// potential (zero at the origin).
+    /// Total energy: kinetic `½ vᵀMv`, stretch and bending (zero at the rest length, straight),
+    /// and gravity's potential (zero at the origin).
     pub fn energy(&self) -> P::Scalar {
-        let mut e = P::Scalar::ZERO;
-        // Kinetic, from the f64 band of M.
-        let mut kinetic = 0.0;
+        let (x, v) = (&self.pos, &self.vel);
+        let mv = self.mass_times(v);
+        let mut e = self.elastic_potential(&self.strains(x, &[P::default(); K]));
         for i in 0..K {
-            for d in 0..4 {
-                let j = i + d;
-                if j < K {
-                    let m = self.band[i][d] * if d == 0 { 1.0 } else { 2.0 };
-                    kinetic += m * self.vel[i].dot(self.vel[j]).to_f64();
-                }
-            }
-        }
-        e += P::Scalar::from_f64(kinetic / 2.0);
-        e += self.elastic_potential(&self.strains(&self.pos, &self.vel));
-        for (p, &m) in self.pos.iter().zip(&self.load) {
-            e -= self.settings.gravity.dot(*p) * m;
+            e += v[i].dot(mv[i]) * P::Scalar::ratio(1, 2)
+                - self.settings.gravity.dot(x[i]) * self.load[i];
         }
         e
     }
@@ -1109,7 +1160,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         contacts: Option<&Contacts<'_, P>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         check_non_negative(dt)?;
-        let per_rate = substeps_per_rate(&self.settings.integrator, self.settings.accuracy);
+        let per_rate = match self.settings.integrator.implicit() {
+            Some(_) => P::Scalar::ZERO,
+            None => substeps_per_rate(&SymplecticEuler, self.settings.accuracy),
+        };
         let rate = self.omega + self.gamma + self.settings.damping;
         let floor = contacts.map_or(P::Scalar::ZERO, |c| {
             let fastest = self
@@ -1154,7 +1208,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         field: &mut F,
         contacts: Option<&Contacts<'_, P>>,
     ) -> Result<bool, Error> {
-        let saved = (self.pos, self.vel, self.time);
+        let saved = (self.pos, self.vel, self.time, self.history);
         let drag = self.settings.damping;
         let mut saturated = false;
         for step in 0..n {
@@ -1172,8 +1226,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             field.apply(self.time, &bodies, &mut out);
             saturated |= out.saturated;
             let field: [P; K] = core::array::from_fn(|i| added[i] * self.load[i]);
-            if let Some(iterations) = self.settings.integrator.implicit_iterations() {
-                self.implicit_step(h, &field, iterations);
+            if let Some(implicit) = self.settings.integrator.implicit() {
+                self.implicit_step(h, &field, implicit);
             } else {
                 let (f, _) = self.forces(&self.strains(&self.pos, &self.vel));
                 let mut a = self.free(core::array::from_fn(|i| f[i] + field[i]));
@@ -1209,7 +1263,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
             Ok(saturated)
         } else {
-            (self.pos, self.vel, self.time) = saved;
+            (self.pos, self.vel, self.time, self.history) = saved;
             Err(Error::Diverged)
         }
     }
@@ -1387,37 +1441,79 @@ struct Linearized<P: Point, const K: usize> {
 ///   evaluation and two banded solves a substep; bounded energy.
 /// - [`ImplicitEuler`]: backward Euler, one step a frame at any stiffness (more only for
 ///   contacts), for stiff ropes and cables where the explicit substeps would pass
-///   [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS) and slow time down. The new positions
-///   minimize the step's incremental potential: at most 4 Newton steps from `x + h·v`, each
-///   solved by conjugate gradient ([`iterations`](ImplicitEuler::iterations) at most)
-///   preconditioned by the mass, bending and the taut stretch solved exactly, and halved
-///   until the potential falls (in `Q16`, whose resolution cannot tell, one step taken
-///   whole: linearized backward Euler, which can gain energy on a stiff, fast-turning rope). Its fixed point
-///   is the equilibrium: 8 control points sag within 0.12% of the catenary at `EA = 10⁸ N`
-///   on 1.2 kg. It only loses energy, and damps what a frame cannot resolve, the swing
-///   too: a mode of `ω` loses `1 - 1/(1 + (ω·h)²)` of its energy a step, and a rope
-///   released level loses about 40% of the fall's energy in the first second at 60 Hz.
-///   Range (`tests/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵` (`ds` a span, `ρ` the
-///   mass per length; a 10 m steel cable at 60 Hz is about 2·10³); `f32` to `7·10⁴`; `Q16`
-///   for ropes in pixels (a 70 px rope ends 0.01 px from `f64` after 2 s). Cost on a soft rope is several explicit
-///   frames (`cargo bench --bench physics -- spline_rope`); the explicit one's grows with
-///   `√EA`, this one's does not. No damping floor is needed.
+///   [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS) and slow time down. The new velocities
+///   minimize the step's incremental potential: at most 4 Newton steps, each solved by
+///   conjugate gradient ([`iterations`](ImplicitEuler::iterations) at most) preconditioned
+///   by the mass, the bending and the taut stretch solved exactly, and halved until the
+///   potential falls (in `Q16`, whose resolution cannot tell, one step taken whole:
+///   linearized backward Euler, which can gain energy on a stiff, fast-turning rope). Its
+///   fixed point is the equilibrium: 8 control points sag within 0.12% of the catenary at
+///   `EA = 10⁸ N` on 1.2 kg. It never gains energy, and damps what a frame cannot
+///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
+///   step, and a rope released level loses 31% to 43% of the fall's energy in the first
+///   second at 60 Hz. Range (`tests/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵`
+///   (`ds` a span, `ρ` the mass per length; a 10 m steel cable at 60 Hz is about 2·10³);
+///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.01 px from `f64`
+///   after 2 s). On a soft rope it costs several explicit frames
+///   (`cargo bench --bench physics -- spline_rope`); the explicit cost grows with `√EA`,
+///   this one does not. No damping floor is needed.
+/// - [`Bdf2`]: the same solve on BDF2's shifted start, second order: a rope released level
+///   loses 6% to 8% of the fall's energy in its first second (`EA` from 2·10³ to 10⁷ N on
+///   1 m, 1 kg, `f64`), and never gains. Where BDF2 would gain (very stiff ropes) and in
+///   `Q16`, it takes backward Euler steps.
 ///
-/// Sealed: [`Integrator`] is.
-pub trait SplineStepper: Integrator {
-    /// The conjugate-gradient budget of an implicit stepper; `None` for an explicit one.
-    fn implicit_iterations(&self) -> Option<u8>;
+/// Sealed: the three above are all.
+pub trait SplineStepper: Copy + core::fmt::Debug + PartialEq + sealed::Sealed {
+    /// `None` for an explicit stepper; else its conjugate-gradient budget and whether it is
+    /// second order ([`Bdf2`]).
+    fn implicit(&self) -> Option<(u8, bool)>;
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::SymplecticEuler {}
+    impl Sealed for super::ImplicitEuler {}
+    impl Sealed for super::Bdf2 {}
 }
 
 impl SplineStepper for SymplecticEuler {
-    fn implicit_iterations(&self) -> Option<u8> {
+    fn implicit(&self) -> Option<(u8, bool)> {
         None
     }
 }
 
 impl SplineStepper for ImplicitEuler {
-    fn implicit_iterations(&self) -> Option<u8> {
-        Some(self.iterations)
+    fn implicit(&self) -> Option<(u8, bool)> {
+        Some((self.iterations, false))
+    }
+}
+
+/// A second-order implicit stepper for a [`SplineRope`]: BDF2, each step solved as
+/// [`ImplicitEuler`] solves its own (Newton on the incremental potential, conjugate
+/// gradient with at most `iterations` steps) at about the same cost, with far less damping
+/// on the motion a step resolves (see [`SplineStepper`]). It remembers the last step; a step
+/// of another length, or a change to the state from outside (positions, velocities, pins),
+/// starts it again with one backward Euler step. Where BDF2 would gain energy (`h²·ω²` past
+/// `2²²`, or past `8·10³` in `f32`: a very stiff rope), and in `Q16`, it takes backward
+/// Euler steps. The strain's projection leaves the length free to wiggle between its
+/// quadratic-spline averages; BDF2, damping less, lets a stiff rope's drawn length pass its
+/// rest length by up to 0.7% (backward Euler: 0.04%).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bdf2 {
+    /// Conjugate-gradient iteration budget per Newton step.
+    pub iterations: u8,
+}
+
+impl Default for Bdf2 {
+    /// 16 iterations.
+    fn default() -> Self {
+        Bdf2 { iterations: 16 }
+    }
+}
+
+impl SplineStepper for Bdf2 {
+    fn implicit(&self) -> Option<(u8, bool)> {
+        Some((self.iterations, true))
     }
 }
 

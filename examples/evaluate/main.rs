@@ -17,6 +17,7 @@ mod ropes;
 mod sails;
 mod samplers;
 mod stability;
+mod stiff;
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -90,7 +91,7 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 8] = [
+    let sections: [(&str, Section); 9] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
@@ -99,6 +100,7 @@ fn main() {
         ("level of detail", flatten::run),
         ("contacts", contacts::run),
         ("modes", modes::run),
+        ("stiff ropes", stiff::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

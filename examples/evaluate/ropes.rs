@@ -6,7 +6,7 @@ use dunas::Settings;
 use dunas::integrator::AnyIntegrator;
 use dunas::integrator::{ImplicitEuler, SymplecticEuler};
 use dunas::smooth::Smoothing;
-use dunas::spline_rope::{SplineRope, SplineStepper};
+use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 use dunas::spring::Material;
 use dunas::{Rope, Vec2};
 
@@ -253,7 +253,7 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
     let mut text = String::from(
         "Physics on the curve: `SplineRope` with 8 control points (its state is its drawn curve's control \
          points) beside the raw 30-particle rope, in the same scenes; explicit (symplectic Euler, substeps from \
-         the stiffness bound) and implicit (backward Euler, one step a frame).\n\n| scene | stepper | spline rope \
+         the stiffness bound) and implicit (backward Euler or BDF2, one step a frame).\n\n| scene | stepper | spline rope \
          (8): ns per frame | shape error px | raw rope (30): ns per frame | shape error px | cost ratio |\n\
          |---|---|---|---|---|---|---|\n",
     );
@@ -270,9 +270,13 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
         let (implicit_error, implicit_substeps) =
             spline_error::<8, _>(scene, ImplicitEuler::default(), &references[k]);
         let implicit_ns = spline_frame_ns(run, ImplicitEuler::default());
+        let (bdf2_error, bdf2_substeps) =
+            spline_error::<8, _>(scene, Bdf2::default(), &references[k]);
+        let bdf2_ns = spline_frame_ns(run, Bdf2::default());
         for (stepper, ns, substeps, error) in [
             ("explicit", ns, substeps, error),
-            ("implicit", implicit_ns, implicit_substeps, implicit_error),
+            ("backward Euler", implicit_ns, implicit_substeps, implicit_error),
+            ("BDF2", bdf2_ns, bdf2_substeps, bdf2_error),
         ] {
             text.push_str(&format!(
                 "| {name} | {stepper} | {ns:.0} ({substeps} substeps) | {} | {raw_ns:.0} ({raw_substeps} substeps) | \
@@ -290,20 +294,22 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
                  30-particle rope, at least 4× cheaper per frame",
                 format!(
                     "{} px against {} px, {:.1}× cheaper ({ns:.0} ns against {raw_ns:.0}); 16 control points: {} px; \
-                     implicit: {} px, {:.1}× cheaper",
+                     backward Euler: {} px, {:.1}× cheaper; BDF2: {} px, {:.1}× cheaper",
                     num(error),
                     num(raw_error),
                     raw_ns / ns,
                     num(finer),
                     num(implicit_error),
-                    raw_ns / implicit_ns
+                    raw_ns / implicit_ns,
+                    num(bdf2_error),
+                    raw_ns / bdf2_ns
                 ),
                 error <= raw_error && raw_ns / ns >= 4.0,
                 &format!(
                     "the swing folds the rope near its pin more sharply than 5 cubic spans follow: the error is \
                      the spans' (16 control points come to {} px, at {finer_substeps} substeps a frame); and its \
                      stretch waves ask for substeps (table above), each with 15 square roots, the strain's \
-                     projection and two banded solves. One implicit step a frame damps the swing instead",
+                     projection and two banded solves. One implicit step a frame costs more on this soft rope",
                     num(finer)
                 ),
             );
