@@ -275,7 +275,12 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
         let bdf2_ns = spline_frame_ns(run, Bdf2::default());
         for (stepper, ns, substeps, error) in [
             ("explicit", ns, substeps, error),
-            ("backward Euler", implicit_ns, implicit_substeps, implicit_error),
+            (
+                "backward Euler",
+                implicit_ns,
+                implicit_substeps,
+                implicit_error,
+            ),
             ("BDF2", bdf2_ns, bdf2_substeps, bdf2_error),
         ] {
             text.push_str(&format!(

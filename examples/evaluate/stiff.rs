@@ -101,7 +101,10 @@ pub fn run(run: &mut Run) {
         let reference = reference(ea);
         let measured = [
             ("explicit", measure(run, ea, SymplecticEuler, &reference)),
-            ("backward Euler", measure(run, ea, ImplicitEuler::default(), &reference)),
+            (
+                "backward Euler",
+                measure(run, ea, ImplicitEuler::default(), &reference),
+            ),
             ("BDF2", measure(run, ea, Bdf2::default(), &reference)),
         ];
         let [explicit, implicit, bdf2] = measured.map(|(_, m)| m);
