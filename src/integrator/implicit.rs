@@ -9,6 +9,9 @@ use crate::{Point, Scalar};
 /// Backward Euler linearised once per substep (Baraff–Witkin) and solved by conjugate
 /// gradient with at most `iterations` steps. Stable at any step; damps what it cannot
 /// resolve. Cost per CG iteration: one spring Jacobian product (a square root per spring).
+/// A [`SplineRope`](crate::spline_rope::SplineRope) solves its step fully instead (Newton's
+/// method, `iterations` per Newton step): see
+/// [`SplineStepper`](crate::spline_rope::SplineStepper).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ImplicitEuler {
     /// Conjugate-gradient iteration budget (8 to 32 is typical).
