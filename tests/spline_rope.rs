@@ -336,6 +336,11 @@ fn bad_input_is_an_error() {
     assert!(rope.step(f64::NAN).is_err());
     assert!(rope.set_pinned(5, true).is_err());
     assert!(rope.apply_force(f64::NAN, Vec2::new(1.0, 0.0)).is_err());
+    let bound = rope.stiffness_bound();
+    for ei in [-1.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(rope.set_bending(ei), Err(Error::InvalidParameter));
+    }
+    assert_eq!((rope.bending(), rope.stiffness_bound()), (0.0, bound));
     let mut all = SplineRope::<Vec2<f64>, 4>::new(a, b, 1.0, ok, settings(G, 0.0)).unwrap();
     for i in 1..3 {
         all.set_pinned(i, true).unwrap();
