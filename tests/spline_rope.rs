@@ -10,7 +10,7 @@ mod common;
 
 use common::{
     J0_ZEROS, cantilever_first_mode, cantilever_sag, cantilever_sag_exact, catenary_sag, j0,
-    spline_rope_sag,
+    released_spline_rope, spline_rope_sag,
 };
 
 const G: f64 = 9.81;
@@ -496,18 +496,7 @@ fn drawn_length<const K: usize, I: SplineStepper>(rope: &SplineRope<Vec2<f64>, K
 /// energy gain and the energy lost in the first second (both over `m·g·L/2`, what the fall
 /// releases), and the longest the drawn curve got (m).
 fn implicit_release<S: Scalar, I: SplineStepper>(ea: f64, stepper: I) -> (f64, f64, f64) {
-    let s = Settings {
-        gravity: Vec2::new(S::ZERO, S::from_f64(-G)),
-        ..Settings::default()
-    }
-    .with_integrator(stepper);
-    let stretch = Material {
-        stiffness: S::from_f64(ea),
-        damping: S::ZERO,
-    };
-    let (start, end) = (Vec2::new(S::ZERO, S::ZERO), Vec2::new(S::ONE, S::ZERO));
-    let mut rope: SplineRope<Vec2<S>, 8, I> =
-        SplineRope::new(start, end, S::ONE, stretch, s).unwrap();
+    let mut rope = released_spline_rope::<S, I>(ea, stepper);
     let scale = 0.5 * G;
     let e0 = rope.energy().to_f64();
     let (mut gain, mut longest, mut lost) = (f64::MIN, 0.0f64, 0.0);

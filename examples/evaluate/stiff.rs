@@ -6,7 +6,7 @@ use dunas::integrator::{ImplicitEuler, SymplecticEuler};
 use dunas::prelude::*;
 use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 
-use crate::common::hausdorff;
+use crate::common::{hausdorff, released_spline_rope};
 use crate::report::{Run, Series, chart, csv, median_ns, num};
 
 const DT: f64 = 1.0 / 60.0;
@@ -14,22 +14,6 @@ const DT: f64 = 1.0 / 60.0;
 const AT: f64 = 1.0;
 /// Points drawn to compare shapes.
 const DRAWN: usize = 65;
-
-/// A 1 m, 1 kg rope of 8 control points and axial stiffness `ea` (N), no damping given,
-/// pinned at its start and released level under `g = 9.81`, stepped by `stepper`.
-fn rope<S: Scalar, I: SplineStepper>(ea: f64, stepper: I) -> SplineRope<Vec2<S>, 8, I> {
-    let settings = Settings {
-        gravity: Vec2::new(S::ZERO, S::from_f64(-9.81)),
-        ..Settings::default()
-    }
-    .with_integrator(stepper);
-    let stretch = Material {
-        stiffness: S::from_f64(ea),
-        damping: S::ZERO,
-    };
-    let (start, end) = (Vec2::new(S::ZERO, S::ZERO), Vec2::new(S::ONE, S::ZERO));
-    SplineRope::new(start, end, S::ONE, stretch, settings).expect("a valid rope")
-}
 
 /// The drawn curve of `rope` (f64 coordinates).
 fn drawn<S: Scalar, I: SplineStepper>(rope: &SplineRope<Vec2<S>, 8, I>) -> Vec<Vec2<f64>> {
@@ -44,7 +28,7 @@ fn drawn<S: Scalar, I: SplineStepper>(rope: &SplineRope<Vec2<S>, 8, I>) -> Vec<V
 /// The reference at `AT`: the same rope in f64, symplectic Euler at a tenth of its
 /// stability limit, step by step (no cap, no slow motion).
 fn reference(ea: f64) -> Vec<Vec2<f64>> {
-    let mut r = rope::<f64, _>(ea, SymplecticEuler);
+    let mut r = released_spline_rope::<f64, _>(ea, SymplecticEuler);
     r.set_settings(Settings {
         gravity: Vec2::new(0.0, -9.81),
         accuracy: Accuracy::Fine,
@@ -63,7 +47,7 @@ fn reference(ea: f64) -> Vec<Vec2<f64>> {
 /// of the frame's time it simulates (below 1 in slow motion), and its shape error at `AT`
 /// (f64, against `reference`, m).
 fn measure<I: SplineStepper>(run: &Run, ea: f64, stepper: I, reference: &[Vec2<f64>]) -> [f64; 3] {
-    let mut fast = rope::<f32, _>(ea, stepper);
+    let mut fast = released_spline_rope::<f32, _>(ea, stepper);
     let start = fast.clone();
     let mut out = [Vec2::<f32>::default(); DRAWN];
     let mut frames = 0;
@@ -77,7 +61,7 @@ fn measure<I: SplineStepper>(run: &Run, ea: f64, stepper: I, reference: &[Vec2<f
         share = share.min(info.simulated as f64 / DT);
         std::hint::black_box(fast.sample(&mut out).expect("room"));
     });
-    let mut exact = rope::<f64, _>(ea, stepper);
+    let mut exact = released_spline_rope::<f64, _>(ea, stepper);
     let mut time = 0.0;
     while time < AT - 1e-9 {
         time += exact.step(DT).expect("stable").simulated;

@@ -516,3 +516,23 @@ pub fn cantilever_first_mode() -> (f64, f64) {
     let measured = 2.0 * std::f64::consts::PI * (crossings - 1).max(1) as f64 / (latest - first);
     (measured, 1.875_104_068_711_961_f64.powi(2) * 10.0)
 }
+
+/// A 1 m, 1 kg spline rope of 8 control points and axial stiffness `ea` (N), no damping
+/// given, pinned at its start and released level under `g = 9.81`, stepped by `stepper`.
+pub fn released_spline_rope<S: Scalar, I: dunas::spline_rope::SplineStepper>(
+    ea: f64,
+    stepper: I,
+) -> dunas::spline_rope::SplineRope<Vec2<S>, 8, I> {
+    let settings = Settings {
+        gravity: Vec2::new(S::ZERO, S::from_f64(-9.81)),
+        ..Settings::default()
+    }
+    .with_integrator(stepper);
+    let stretch = Material {
+        stiffness: S::from_f64(ea),
+        damping: S::ZERO,
+    };
+    let (start, end) = (Vec2::new(S::ZERO, S::ZERO), Vec2::new(S::ONE, S::ZERO));
+    dunas::spline_rope::SplineRope::new(start, end, S::ONE, stretch, settings)
+        .expect("a valid rope")
+}
