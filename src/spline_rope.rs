@@ -831,21 +831,27 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         w
     }
 
-    /// Whether BDF2 holds its energy at a step of `h`: `h²·ω² ≤ 2²²` (measured: a 1 m, 1 kg
-    /// rope of 8 control points gains none at `EA = 10⁷ N`, `h²·ω² ≈ 3·10⁶`, and gains at
-    /// `3·10⁷ N`), and in the format's precision `h²·ω²·ε ≤ 2⁻¹⁰` (in `f32`, `h²·ω² ≤ 8·10³`).
-    /// Never in `Q16`, whose one linearized Newton step lets BDF2 drift (8 px in 2 s on a
-    /// 70 px rope, where backward Euler stays within 0.01 px of `f64`).
+    /// Whether `h²·ω²·ε ≤ 2⁻¹⁰` (`ε` the format's epsilon; in `f32`, `h²·ω² ≤ 8·10³`): where
+    /// the stretch's exact solve, which subtracts terms `h²·ω²` times larger than its result,
+    /// keeps its precision, and BDF2 was tested to hold its energy.
+    fn within_precision(&self, h: P::Scalar) -> bool {
+        self.omega * h * self.omega * h * P::Scalar::EPSILON <= P::Scalar::ratio(1, 1024)
+    }
+
+    /// Whether BDF2 takes a step of `h`: within the format's precision, `h²·ω² ≤ 2²²` (the
+    /// stiffest tested to hold its energy: a 1 m, 1 kg rope of 8 control points at
+    /// `EA = 10⁷ N`, `h²·ω² ≈ 3·10⁶`, `tests/spline_rope.rs`), and never in `Q16`, whose one
+    /// linearized Newton step lets BDF2 drift from `f64`.
     fn bdf2_holds(&self, h: P::Scalar) -> bool {
-        let stiffness = self.omega * h * self.omega * h;
         !P::Scalar::FIXED_POINT
-            && stiffness.to_f64() <= f64::from(1u32 << 22)
-            && stiffness * P::Scalar::EPSILON <= P::Scalar::ratio(1, 1024)
+            && (self.omega * h * self.omega * h).to_f64() <= f64::from(1u32 << 22)
+            && self.within_precision(h)
     }
 
     /// One implicit step of `h` with the generalized forces `field` held: backward Euler, or
     /// with `second_order` BDF2 when the last step was one of the same `h` and
-    /// [`bdf2_holds`](Self::bdf2_holds) (else backward Euler). BDF2 is a [`backward_euler`](Self::backward_euler) solve of `⅔·h`
+    /// [`bdf2_holds`](Self::bdf2_holds) (else backward Euler). BDF2 is a
+    /// [`backward_euler`](Self::backward_euler) solve of `⅔·h`
     /// from `(4·x₀ − x₋₁)/3` and `(4·v₀ − v₋₁)/3`: the same cost, second order, and it still
     /// damps what a step cannot resolve.
     fn implicit_step(
@@ -1026,8 +1032,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// The conjugate gradient's preconditioner for a step of `h`: the banded
     /// `M' = M·(1 + drag) + h²·EI·B` factored (the mass's factor if rounding stops that), and
     /// the taut stretch beside it ([`stretch_solve`](Self::stretch_solve)) while
-    /// `h²·ω²·ε ≤ 2⁻¹⁰` (`ε` the format's epsilon: `h²·ω² ≤ 8·10³` in `f32`): its solve
-    /// subtracts terms `h²·ω²` times larger than its result.
+    /// [`within_precision`](Self::within_precision).
     fn preconditioner(
         &self,
         lin: &Linearized<P, K>,
@@ -1045,8 +1050,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         let band = self.reduced(&band, (P::Scalar::ZERO, one));
         let banded = cholesky(&band, |x| one / x.sqrt()).unwrap_or(self.chol);
-        let stiff = self.omega * h * self.omega * h * P::Scalar::EPSILON;
-        let stretch = if stiff <= P::Scalar::ratio(1, 1024) {
+        let stretch = if self.within_precision(h) {
             self.stretch_solve(lin, h, &banded)
         } else {
             None
@@ -1459,7 +1463,7 @@ struct Linearized<P: Point, const K: usize> {
 ///   this one does not. No damping floor is needed.
 /// - [`Bdf2`]: the same solve on BDF2's shifted start, second order: a rope released level
 ///   loses 6% to 8% of the fall's energy in its first second (`EA` from 2·10³ to 10⁷ N on
-///   1 m, 1 kg, `f64`), and never gains. Where BDF2 would gain (very stiff ropes) and in
+///   1 m, 1 kg, `f64`), and never gains. Past the stiffness it was tested at, and in
 ///   `Q16`, it takes backward Euler steps.
 ///
 /// Sealed: the three above are all.
@@ -1493,9 +1497,9 @@ impl SplineStepper for ImplicitEuler {
 /// gradient with at most `iterations` steps) at about the same cost, with far less damping
 /// on the motion a step resolves (see [`SplineStepper`]). It remembers the last step; a step
 /// of another length, or a change to the state from outside (positions, velocities, pins),
-/// starts it again with one backward Euler step. Where BDF2 would gain energy (`h²·ω²` past
-/// `2²²`, or past `8·10³` in `f32`: a very stiff rope), and in `Q16`, it takes backward
-/// Euler steps. The strain's projection leaves the length free to wiggle between its
+/// starts it again with one backward Euler step. Past the stiffness it was tested to hold
+/// its energy at (`h²·ω²` past `2²²`, or past `8·10³` in `f32`: a very stiff rope), and in
+/// `Q16`, it takes backward Euler steps. The strain's projection leaves the length free to wiggle between its
 /// quadratic-spline averages; BDF2, damping less, lets a stiff rope's drawn length pass its
 /// rest length by up to 0.7% (backward Euler: 0.04%).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

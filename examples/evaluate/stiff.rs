@@ -145,8 +145,8 @@ pub fn run(run: &mut Run) {
              a frame the explicit steps cover (below 100%, its substeps hit their cap of 64 and time slows down). \
              Shape error: the f64 rope's drawn curve after 1 s against symplectic Euler at a tenth of its limit, \
              step by step. Explicit steps at `Accuracy::Fast`; the implicit ones one a frame with 16 \
-             conjugate-gradient iterations (BDF2 takes backward Euler steps where it would gain energy: past \
-             `h²·ω² = 2²²` in f64, `8·10³` in f32).\n\n{table}\nThe explicit rope's substeps grow with `√EA` \
+             conjugate-gradient iterations (BDF2 takes backward Euler steps past the stiffness it was \
+             tested to hold its energy at: `h²·ω² = 2²²` in f64, `8·10³` in f32).\n\n{table}\nThe explicit rope's substeps grow with `√EA` \
              until their cap slows time; the implicit ones' cost grows only with their Newton and \
              conjugate-gradient iterations, and backward Euler's error is its damping of the swing. \
              Data: `stiff.csv`."
