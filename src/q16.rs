@@ -236,6 +236,47 @@ fn isqrt(n: u64) -> u64 {
     root
 }
 
+/// `1/√u` at the middle of each eighth of `u ∈ [1, 4)`, in units of 2⁻¹⁶: the first guess of
+/// [`inv_sqrt_bits`], within 3% everywhere (tested).
+const INV_SQRT_GUESS: [u32; 24] = [
+    63579, 60140, 57205, 54661, 52429, 50450, 48679, 47082, 45633, 44310, 43096, 41977, 40940,
+    39977, 39078, 38238, 37449, 36708, 36008, 35347, 34722, 34128, 33564, 33027,
+];
+
+/// The raw bits of `1/√x` for the raw bits `x > 0` of a `Q16`, in 32-bit arithmetic only (no
+/// 64-bit multiply or divide, which a Cortex-M0 calls a library for): `x = u·2³⁰ / 4^k` with
+/// `u ∈ [1, 4)`, a guess from [`INV_SQRT_GUESS`] and two Newton steps on `1/√u` in 16
+/// fractional bits, shifted back. About 60 instructions there.
+fn inv_sqrt_bits(x: u32) -> u32 {
+    let (mut m, mut k) = (x, 0u32);
+    for (below, shift) in [(1u32 << 16, 16u32), (1 << 24, 8), (1 << 28, 4), (1 << 30, 2)] {
+        if m < below {
+            m <<= shift;
+            k += shift / 2;
+        }
+    }
+    // `u = m / 2³⁰` in its 16-bit halves, `z ≈ 1/√u ∈ (½, 1]` in 16 fractional bits: every
+    // product fits 32 bits.
+    let (high, low) = (m >> 16, m & 0xffff);
+    let mut z = INV_SQRT_GUESS[(m >> 27) as usize - 8];
+    for _ in 0..2 {
+        // `z` stays at or below 1 (Newton's steps approach from below), so only `z = 1`
+        // would overflow its square.
+        let z2 = if z >= 1 << 16 { 1 << 16 } else { (z * z + (1 << 15)) >> 16 };
+        // `1 − u·z²` in 30 fractional bits, then `z += z·(1 − u·z²)/2`.
+        let uz2 = high * z2 + ((low * z2) >> 16);
+        let e = ((1u32 << 30) as i32).wrapping_sub(uz2 as i32);
+        z = (z as i32 + ((z as i32 * (e >> 12) + (1 << 18)) >> 19)) as u32;
+    }
+    // `1/√x = z · 2^(k−7)` in 16 fractional bits.
+    if k >= 7 {
+        z << (k - 7)
+    } else {
+        let s = 7 - k;
+        (z + (1 << (s - 1))) >> s
+    }
+}
+
 impl Scalar for Q16 {
     const ZERO: Self = Q16::from_bits(0);
     const ONE: Self = Q16::from_bits(1 << 16);
@@ -271,6 +312,18 @@ impl Scalar for Q16 {
             Self::ZERO
         } else {
             Q16(self.0.sqrt())
+        }
+    }
+
+    /// In 32-bit arithmetic (see `inv_sqrt_bits`): within 2⁻¹⁵ of `1/√x` relative, or
+    /// one unit of 2⁻¹⁶ where that is larger (tested over the whole range).
+    #[inline]
+    fn inv_sqrt(self) -> Self {
+        let x = self.to_bits();
+        if x <= 0 {
+            Self::ZERO
+        } else {
+            Q16::from_bits(inv_sqrt_bits(x as u32) as i32)
         }
     }
 
@@ -414,6 +467,33 @@ mod tests {
         assert_eq!(q(30000.0) + q(30000.0), Q16::MAX);
         assert_eq!(q(-30000.0) - q(30000.0), Q16::MIN);
         assert_eq!(-Q16::MIN, Q16::MAX);
+    }
+
+    #[test]
+    fn inverse_square_root_holds_its_bound() {
+        let (mut worst_rel, mut worst_ulp) = (0.0f64, 0.0f64);
+        let mut x: u32 = 1;
+        while x < i32::MAX as u32 {
+            let got = inv_sqrt_bits(x) as f64;
+            let exact = 16_777_216.0 / (x as f64).sqrt();
+            let err = (got - exact).abs();
+            assert!(
+                err <= (exact / 32768.0).max(1.0),
+                "x {x}: {got} against {exact}"
+            );
+            worst_rel = worst_rel.max(err / exact);
+            worst_ulp = worst_ulp.max(err);
+            x = x + 1 + x / 4099;
+        }
+        for (i, &g) in INV_SQRT_GUESS.iter().enumerate() {
+            let mid = (i as f64 + 8.5) / 8.0;
+            assert_eq!(g, (65536.0 / mid.sqrt()).round() as u32);
+        }
+        assert_eq!(Q16::ONE.inv_sqrt(), Q16::ONE);
+        assert_eq!(Q16::from_i16(4).inv_sqrt(), Q16::ratio(1, 2));
+        assert_eq!(Q16::ZERO.inv_sqrt(), Q16::ZERO);
+        assert_eq!(Q16::from_i16(-3).inv_sqrt(), Q16::ZERO);
+        std::println!("worst {worst_rel:e} relative, {worst_ulp} ulp");
     }
 
     #[test]

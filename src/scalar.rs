@@ -69,6 +69,17 @@ pub trait Scalar:
             Self::ZERO
         }
     }
+    /// `1 / sqrt(self)`, for a direction and a length from one squared length; non-positive
+    /// or NaN input gives 0. Floats: a square root and a division, exact to their rounding.
+    /// `Q16`: 32-bit integer steps only, within 2⁻¹⁵ relative or one unit of 2⁻¹⁶.
+    #[inline]
+    fn inv_sqrt(self) -> Self {
+        if self > Self::ZERO {
+            Self::ONE / self.sqrt()
+        } else {
+            Self::ZERO
+        }
+    }
     /// Absolute value (saturating for `Q16`).
     fn abs(self) -> Self;
     /// `false` for NaN and infinities, and for a `Q16` that has saturated to its range.

@@ -28,7 +28,7 @@
 //!   weights (`Jᵀ f`), and contacts push the drawn curve itself out of the colliders.
 //!
 //! Steps are symplectic Euler with substeps from the largest generalized eigenvalue of the
-//! projected stretch stiffness against the mass (found by power iteration at construction
+//! projected stretch stiffness against the mass (found by Lanczos steps at construction
 //! and when pins change), at the [`Accuracy`]'s fraction of the limit; or, chosen by type,
 //! backward Euler or BDF2 by Newton's method on the step's incremental potential, one step a
 //! frame at any stiffness (see [`SplineStepper`]).
@@ -52,7 +52,7 @@
 //! Cost per substep: `3·(K - 3)` square roots and divisions, two banded solves and about
 //! `200·K` multiply-adds. Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`];
 //! `Q16` for ropes measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends
-//! 0.15 px from `f64` after 2 s); the construction (mass matrix, factors, bound) runs in
+//! 0.16 px from `f64` after 2 s); the construction (mass matrix, factors, bound) runs in
 //! `f64` and is stored in the format.
 //!
 //! ```
@@ -166,7 +166,7 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     settings: Settings<P, I>,
     length: P::Scalar,
     mass: P::Scalar,
-    /// `ω` of the stretch and bending against the mass (rad/s), from power iteration.
+    /// `ω` of the stretch and bending against the mass (rad/s), from Lanczos steps.
     omega: P::Scalar,
     /// The same for the stretch alone: what the strain damping acts on.
     stretch_omega: P::Scalar,
@@ -282,7 +282,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// Factors the mass matrix with the pinned rows and columns made identity, and finds the
-    /// stable substep's rate. `f64`, `O(K)` for the factor and `O(K)` per power iteration.
+    /// stable substep's rate. `f64`, `O(K)` for the factor, `O(K²)` for the rate (at most
+    /// `K` Lanczos steps).
     fn refactor(&mut self) -> Result<(), Error> {
         for i in 0..K {
             self.inv_load[i] = if self.pinned[i] {
@@ -304,13 +305,15 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let quad = self
             .quad
             .map(|span| span.map(|(w, dn)| (w.to_f64(), dn.map(|d| d.to_f64()))));
-        // `EI` 0 for the stretch alone; one closure type, so one power iteration is linked.
+        // `EI` 0 for the stretch alone; one closure type, so one eigenvalue search is linked.
         let ei = self.bending.to_f64();
         let curvature = if ei > 0.0 {
             curvature_band::<K>(self.length.to_f64() / (K - 3) as f64)
         } else {
             [[0.0; 4]; K]
         };
+        // The tables by reference: a copy in each closure would cost the stack 2 KB.
+        let (quad, proj, gram, curvature) = (&quad, &proj, &gram, &curvature);
         let stiffness = |ei: f64| {
             move |x: &[f64; K]| -> [f64; K] {
                 let mut strain = [[0.0; 3]; K];
@@ -319,9 +322,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                         strain[e][q] = (0..4).map(|k| dn[k] * x[e + k]).sum();
                     }
                 }
-                project(&proj, &weights, &gram, &mut strain);
+                project(proj, &weights, gram, &mut strain);
                 let mut y = if ei > 0.0 {
-                    band_times(&curvature, x).map(|b| ei * b)
+                    band_times(curvature, x).map(|b| ei * b)
                 } else {
                     [0.0; K]
                 };
@@ -335,10 +338,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 y
             }
         };
-        let stretch = largest_eigenvalue(stiffness(0.0), &chol, &self.pinned);
+        let stretch = largest_eigenvalue(stiffness(0.0), &m, &chol, &self.pinned);
         self.stretch_omega = P::Scalar::from_f64(crate::catenary::sqrt(stretch));
         let lambda = if ei > 0.0 {
-            largest_eigenvalue(stiffness(ei), &chol, &self.pinned)
+            largest_eigenvalue(stiffness(ei), &m, &chol, &self.pinned)
         } else {
             stretch
         };
@@ -407,7 +410,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The highest angular frequency of the stretch and bending against the mass (rad/s, by
-    /// power iteration on the straight rope) and the strain damping's rate on the fastest
+    /// Lanczos steps on the straight rope) and the strain damping's rate on the fastest
     /// stretch wave (1/s): what the substeps are planned from, at the [`Accuracy`]'s fraction of
     /// symplectic Euler's limit `ω·h < 2`.
     pub fn stiffness_bound(&self) -> (P::Scalar, P::Scalar) {
@@ -443,8 +446,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// Sets the bending stiffness `EI` (force · length²): the energy `½ ∫ EI |x''|² ds`, a
     /// constant banded matrix on the control points (a cable, a hose, a wire). A hanging
     /// end bends like a cantilever (`tests/spline_rope.rs`: tip deflection within 1% of
-    /// `ρ·g·L⁴ / (8·EI)`). The substep bound is found again (power iteration, `O(K)` per
-    /// round): a stiff `EI` on short spans asks for many substeps, `ω² ∝ EI / (ρ·ds⁴)`;
+    /// `ρ·g·L⁴ / (8·EI)`). The substep bound is found again (at most `K` Lanczos
+    /// steps, `O(K²)`): a stiff `EI` on short spans asks for many substeps, `ω² ∝ EI / (ρ·ds⁴)`;
     /// the implicit stepper takes it in one.
     ///
     /// # Errors
@@ -585,28 +588,29 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                     d += x[e + k] * dn[k];
                     dv += v[e + k] * dn[k];
                 }
-                let l = d.length();
+                // `|x'|` and its inverse from one inverse square root (in `Q16` no division).
+                let square = d.dot(d);
+                let inv = square.inv_sqrt();
                 out.slope[e][q] = d;
-                let mut rate = zero;
-                if l.partial_cmp(&P::Scalar::EPSILON) == Some(core::cmp::Ordering::Greater) {
-                    let inv = P::Scalar::ONE / l;
-                    out.inv[e][q] = inv;
-                    rate = d.dot(dv) * inv;
-                }
-                out.strain[e][q] = Vec2::new(l - P::Scalar::ONE, rate);
+                out.inv[e][q] = inv;
+                let rate = d.dot(dv) * inv;
+                out.strain[e][q] = Vec2::new(square * inv - P::Scalar::ONE, rate);
             }
         }
         project(&self.proj, &self.weights, &self.gram, &mut out.strain);
         out
     }
 
-    /// The generalized forces at strains `st`: gravity, stretch and strain damping, and the
-    /// applied forces; with the tension at each stretch point.
-    fn forces(&self, st: &Strains<P, K>) -> ([P; K], Tensions<P::Scalar, K>) {
-        let mut f: [P; K] = core::array::from_fn(|i| self.settings.gravity * self.load[i]);
-        for (fi, &e) in f.iter_mut().zip(&self.extra) {
-            *fi += e;
-        }
+    /// The generalized forces from outside: gravity and a field's accelerations `acc`
+    /// through each control point's mass, `(g + a_i)·∫ ρ N_i ds`, and the applied forces.
+    fn external(&self, acc: &[P; K]) -> [P; K] {
+        core::array::from_fn(|i| (self.settings.gravity + acc[i]) * self.load[i] + self.extra[i])
+    }
+
+    /// The rope's own generalized forces at strains `st`, stretch, strain damping and
+    /// bending, added to `external`; with the tension at each stretch point.
+    fn forces(&self, st: &Strains<P, K>, external: &[P; K]) -> ([P; K], Tensions<P::Scalar, K>) {
+        let mut f = *external;
         if self.bending > P::Scalar::ZERO {
             let bend = band_times(&self.bend, &st.pos);
             for (fi, b) in f.iter_mut().zip(bend) {
@@ -734,10 +738,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The new velocities `w` of one backward Euler step of `h` from `x0`, `v0` with the
-    /// generalized forces `field` held: they minimize the step's incremental potential
+    /// generalized forces `external` held (see [`external`](Self::external)): they minimize the step's incremental potential
     /// `½|w − v₀|²_M + ½|w|²_D + V(x₀ + h·w) − fᵀ(x₀ + h·w)`, `D = h·(γ·M + C₀)` (air drag,
     /// and the strain damping linearized at the start), `V` the stretch and bending energy
-    /// and `f` gravity, the applied forces and `field`; the positions are `x₀ + h·w`. Newton
+    /// and `f` the external forces; the positions are `x₀ + h·w`. Newton
     /// steps ([`NEWTON`] at most) from `w = v₀`, each solved by [`conjugate_gradient`]
     /// (`iterations` at most) and halved until the potential falls (in `Q16` one, whole).
     ///
@@ -746,14 +750,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         &self,
         (x0, v0): (&[P; K], &[P; K]),
         h: P::Scalar,
-        field: &[P; K],
+        external: &[P; K],
         iterations: u8,
     ) -> [P; K] {
         let zero = P::Scalar::ZERO;
         let (x0, v0) = (*x0, *v0);
         let still = [P::default(); K];
         let start = self.strains(&x0, &v0);
-        let (_, t0) = self.forces(&start);
+        let (_, t0) = self.forces(&start, external);
         // `D·u`: the drag and the strain damping, linear, frozen at the start.
         let damping = self.linearized(&start, &t0, h, false);
         let drag = h * self.settings.damping;
@@ -765,20 +769,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let at = |w: &[P; K]| -> [P; K] { core::array::from_fn(|i| x0[i] + w[i] * h) };
         let mut w = v0;
         let mut st = self.strains(&at(&w), &still);
-        // Gravity, the applied forces and the field: the potential's linear part.
-        let outer: [P; K] = core::array::from_fn(|i| {
-            self.settings.gravity * self.load[i] + self.extra[i] + field[i]
-        });
         let mut first = zero;
         let mut pre = None;
         for _ in 0..NEWTON {
-            let (f, t) = self.forces(&st);
+            let (f, t) = self.forces(&st, external);
             let change: [P; K] = core::array::from_fn(|i| w[i] - v0[i]);
             let (m, d) = (self.mass_times(&change), damp(&w));
             // `∇Φ`: the stretch's and bending's share of it is in `f`.
-            let gradient = self.free(core::array::from_fn(|i| {
-                m[i] + d[i] - (f[i] + field[i]) * h
-            }));
+            let gradient = self.free(core::array::from_fn(|i| m[i] + d[i] - f[i] * h));
             let lin = self.linearized(&st, &t, h, true);
             // Built once a step: a preconditioner needs no update.
             let pre = pre.get_or_insert_with(|| self.preconditioner(&lin, h, drag));
@@ -806,7 +804,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             // `Φ` along the step, less its value at `w`:
             // `α·linear + ½α²·curve + V(x + α·h·δ) − V(x)`.
             let (md, dd) = (self.mass_times(&step), damp(&step));
-            let linear = (0..K).fold(zero, |sum, i| sum + step[i].dot(m[i] + d[i] - outer[i] * h));
+            let linear = (0..K).fold(zero, |sum, i| {
+                sum + step[i].dot(m[i] + d[i] - external[i] * h)
+            });
             let curve = dot(&step, &md) + dot(&step, &dd);
             let energy = self.elastic_potential(&st);
             let mut alpha = P::Scalar::ONE;
@@ -848,7 +848,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             && self.within_precision(h)
     }
 
-    /// One implicit step of `h` with the generalized forces `field` held: backward Euler, or
+    /// One implicit step of `h` with the generalized forces `external` held: backward Euler, or
     /// with `second_order` BDF2 when the last step was one of the same `h` and
     /// [`bdf2_holds`](Self::bdf2_holds) (else backward Euler). BDF2 is a
     /// [`backward_euler`](Self::backward_euler) solve of `⅔·h`
@@ -857,7 +857,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     fn implicit_step(
         &mut self,
         h: P::Scalar,
-        field: &[P; K],
+        external: &[P; K],
         (iterations, second_order): (u8, bool),
     ) {
         let (x0, v0) = (self.pos, self.free(self.vel));
@@ -871,11 +871,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let four = P::Scalar::from_i16(4);
                 let xs: [P; K] = core::array::from_fn(|i| (x0[i] * four - xp[i]) * third);
                 let vs: [P; K] = core::array::from_fn(|i| (v0[i] * four - vp[i]) * third);
-                let w = self.backward_euler((&xs, &self.free(vs)), step, field, iterations);
+                let w = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
                 (along(&xs, &w, step), w)
             }
             _ => {
-                let w = self.backward_euler((&x0, &v0), h, field, iterations);
+                let w = self.backward_euler((&x0, &v0), h, external, iterations);
                 (along(&x0, &w, h), w)
             }
         };
@@ -1229,12 +1229,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             };
             field.apply(self.time, &bodies, &mut out);
             saturated |= out.saturated;
-            let field: [P; K] = core::array::from_fn(|i| added[i] * self.load[i]);
+            let external = self.external(&added);
             if let Some(implicit) = self.settings.integrator.implicit() {
-                self.implicit_step(h, &field, implicit);
+                self.implicit_step(h, &external, implicit);
             } else {
-                let (f, _) = self.forces(&self.strains(&self.pos, &self.vel));
-                let mut a = self.free(core::array::from_fn(|i| f[i] + field[i]));
+                let (f, _) = self.forces(&self.strains(&self.pos, &self.vel), &external);
+                let mut a = self.free(f);
                 solve(&self.chol, &mut a);
                 for i in 0..K {
                     if !self.pinned[i] {
@@ -1334,7 +1334,7 @@ fn stretch_energy<S: Scalar>(ea: S, l: S) -> S {
 /// A spline rope's curve as Bézier spans (its Bézier extraction), as contacts test it.
 struct Spans<'a, P: Point, const K: usize> {
     ext: &'a [[[P::Scalar; 4]; 4]; K],
-    /// Span `e` in `spans[e]` for `e < K - 3`; the rest repeat the last.
+    /// Span `e` in `spans[e]` for `e < K - 3` (the rest unused).
     spans: [Bezier<P, 4>; K],
 }
 
@@ -1348,17 +1348,24 @@ impl<'a, P: Point, const K: usize> Spans<'a, P, K> {
         spans
     }
 
+    /// The spans' Bézier points: each mixes 1 to 3 control points (the zero weights are
+    /// skipped), and a span starts where the last ends (exactly, in every format).
     fn redraw(&mut self, pos: &[P; K]) {
-        self.spans = core::array::from_fn(|e| {
-            let e = e.min(K - 4);
-            Bezier::new_unchecked(core::array::from_fn(|r| {
-                let mut b = P::default();
+        let mut start = pos[0];
+        for e in 0..K - 3 {
+            let mut points = [start; 4];
+            for (r, b) in points.iter_mut().enumerate().skip(1) {
+                *b = P::default();
                 for k in 0..4 {
-                    b += pos[e + k] * self.ext[e][r][k];
+                    let w = self.ext[e][r][k];
+                    if w != P::Scalar::ZERO {
+                        *b += pos[e + k] * w;
+                    }
                 }
-                b
-            }))
-        });
+            }
+            start = points[3];
+            self.spans[e] = Bezier::new_unchecked(points);
+        }
     }
 }
 
@@ -1829,47 +1836,102 @@ where
     }
 }
 
-/// The largest eigenvalue of `M⁻¹ K` (`K` by its action `stiffness`, `M` by its banded
-/// factor with the diagonal inverted), by power iteration on the free control points.
+/// The largest eigenvalue of `M⁻¹ K` on the free control points (`K` by its action
+/// `stiffness`, `M` by its band `mass` and factor `chol`, pinned rows the identity's): the
+/// largest Ritz value of at most `K` Lanczos steps in the `M` inner product, found by
+/// bisection on the tridiagonal's Sturm counts. Exact in `K` steps but for rounding, and
+/// never above the true value; `O(K)` memory, `K` stiffness products.
 fn largest_eigenvalue<const K: usize>(
     stiffness: impl Fn(&[f64; K]) -> [f64; K],
+    mass: &[[f64; 4]; K],
     chol: &[[f64; 4]; K],
     pinned: &[bool; K],
 ) -> f64 {
-    // Alternating signs excite the highest mode.
-    let mut x: [f64; K] = core::array::from_fn(|i| {
-        if pinned[i] {
-            0.0
-        } else if i % 2 == 0 {
-            1.0
-        } else {
-            -1.0
-        }
-    });
-    let mut lambda = 0.0;
-    for _ in 0..200 {
-        let mut y = stiffness(&x);
-        for (yi, &p) in y.iter_mut().zip(pinned) {
+    let free = |mut x: [f64; K]| {
+        for (xi, &p) in x.iter_mut().zip(pinned) {
             if p {
-                *yi = 0.0;
+                *xi = 0.0;
             }
         }
-        // y ← M⁻¹ y through the f64 factor.
-        let mut z = y;
-        solve(chol, &mut z);
-        let norm = z.iter().map(|v| v * v).sum::<f64>();
-        let dot = z.iter().zip(&x).map(|(a, b)| a * b).sum::<f64>();
-        let xx = x.iter().map(|v| v * v).sum::<f64>();
-        if xx > 0.0 {
-            lambda = dot / xx;
-        }
-        let scale = crate::catenary::sqrt(norm);
-        if scale.is_nan() || scale <= 0.0 {
+        x
+    };
+    let dot = |a: &[f64; K], b: &[f64; K]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let m_norm = |x: &[f64; K]| crate::catenary::sqrt(dot(x, &band_times(mass, x)));
+    // Alternating signs lean on the highest mode; the ramp breaks the rope's symmetries.
+    let mut q = free(core::array::from_fn(|i| {
+        let ramp = 1.0 + i as f64 / K as f64;
+        if i % 2 == 0 { ramp } else { -ramp }
+    }));
+    let norm = m_norm(&q);
+    if !(norm > 0.0) {
+        return 0.0;
+    }
+    q = q.map(|v| v / norm);
+    let (mut alpha, mut beta) = ([0.0; K], [0.0; K]);
+    let mut previous = [0.0; K];
+    let mut steps = 0;
+    for j in 0..K {
+        let r = free(stiffness(&q));
+        alpha[j] = dot(&q, &r);
+        steps = j + 1;
+        let mut w = r;
+        solve(chol, &mut w);
+        let w = free(core::array::from_fn(|i| {
+            w[i] - alpha[j] * q[i]
+                - if j > 0 {
+                    beta[j - 1] * previous[i]
+                } else {
+                    0.0
+                }
+        }));
+        let b = m_norm(&w);
+        // A Krylov space closed (or rounding's floor): the Ritz values are exact.
+        if !(b > 1e-12 * alpha[j].abs()) {
             break;
         }
-        x = z.map(|v| v / scale);
+        beta[j] = b;
+        previous = q;
+        q = w.map(|v| v / b);
     }
-    lambda.abs()
+    // Bisection between the largest diagonal and Gershgorin's bound of the tridiagonal.
+    let (mut low, mut high) = (f64::MIN, 0.0f64);
+    for j in 0..steps {
+        let side =
+            if j > 0 { beta[j - 1] } else { 0.0 } + if j + 1 < steps { beta[j] } else { 0.0 };
+        low = low.max(alpha[j]);
+        high = high.max(alpha[j] + side);
+    }
+    // How many eigenvalues of the tridiagonal lie above `x` (its `LDLᵀ - x` pivots).
+    let above = |x: f64| {
+        let (mut d, mut count) = (1.0f64, 0);
+        for j in 0..steps {
+            let coupling = if j > 0 {
+                beta[j - 1] * beta[j - 1] / d
+            } else {
+                0.0
+            };
+            d = alpha[j] - x - coupling;
+            if d == 0.0 {
+                d = f64::EPSILON * (x.abs() + 1.0);
+            }
+            if d > 0.0 {
+                count += 1;
+            }
+        }
+        count
+    };
+    for _ in 0..64 {
+        let mid = 0.5 * (low + high);
+        if !(mid > low && mid < high) {
+            break;
+        }
+        if above(mid) > 0 {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    high.max(0.0)
 }
 
 #[cfg(all(test, dunas_floats))]
@@ -1939,7 +2001,7 @@ mod tests {
             }
             let zero_v = [Vec2::default(); 8];
             let st = r.strains(&r.pos, &zero_v);
-            let (_, t) = r.forces(&st);
+            let (_, t) = r.forces(&st, &r.external(&Default::default()));
             let mut lin = r.linearized(&st, &t, 1.0, true);
             lin.damping = 0.0;
             let u: [Vec2<f64>; 8] =
@@ -1948,7 +2010,8 @@ mod tests {
             let eps = 1e-7;
             let at = |sign: f64| {
                 let x: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + u[i] * (sign * eps));
-                r.forces(&r.strains(&x, &zero_v)).0
+                r.forces(&r.strains(&x, &zero_v), &r.external(&Default::default()))
+                    .0
             };
             let (plus, minus) = (at(1.0), at(-1.0));
             let w: [Vec2<f64>; 8] =
@@ -1995,7 +2058,7 @@ mod tests {
         }
         let zero_v = [Vec2::default(); 8];
         let st = r.strains(&r.pos, &zero_v);
-        let (_, t) = r.forces(&st);
+        let (_, t) = r.forces(&st, &r.external(&Default::default()));
         for h in [1e-3, 1.0 / 60.0, 1.0] {
             let mut lin = r.linearized(&st, &t, h, true);
             assert!(lin.uniform);
@@ -2047,7 +2110,9 @@ mod tests {
                 0.2 * (i as f64 * 0.7).cos(),
             );
         }
-        let f = r.forces(&r.strains(&r.pos, &r.vel)).0;
+        let f = r
+            .forces(&r.strains(&r.pos, &r.vel), &r.external(&Default::default()))
+            .0;
         let h = 1e-6;
         for i in 0..8 {
             for axis in 0..2 {
@@ -2069,6 +2134,99 @@ mod tests {
         }
     }
 
+    /// The substep rate is the straight rope's largest frequency: against a dense reference
+    /// (finite differences of the forces along the rope, Gaussian elimination on the free
+    /// control points' mass, 20 000 power iterations), with pins and bending.
+    #[test]
+    fn the_rate_is_the_straight_ropes_largest_frequency() {
+        fn check<const K: usize>(pins: &[usize], ei: f64) {
+            use crate::Vec2;
+            let s = Settings::default();
+            let m = Material {
+                stiffness: 3000.0,
+                damping: 0.0,
+            };
+            let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(1.5, 0.0));
+            let mut r: SplineRope<Vec2<f64>, K> = SplineRope::new(a, b, 0.7, m, s).unwrap();
+            for &i in pins {
+                r.set_pinned(i, true).unwrap();
+            }
+            r.set_bending(ei).unwrap();
+            let free: heapless::Vec<usize, 64> = (0..K).filter(|&i| !r.pinned[i]).collect();
+            let n = free.len();
+            let h = 1e-7;
+            let force_x = |r: &SplineRope<Vec2<f64>, K>| {
+                r.forces(
+                    &r.strains(&r.pos, &r.vel),
+                    &r.external(&[Vec2::default(); K]),
+                )
+                .0
+            };
+            let mut stiff = [[0.0; 64]; 64];
+            let mut mass = [[0.0; 64]; 64];
+            for (col, &j) in free.iter().enumerate() {
+                let (mut plus, mut minus) = (r.clone(), r.clone());
+                plus.pos[j].x += h;
+                minus.pos[j].x -= h;
+                let (fp, fm) = (force_x(&plus), force_x(&minus));
+                for (row, &i) in free.iter().enumerate() {
+                    stiff[row][col] = -(fp[i].x - fm[i].x) / (2.0 * h);
+                    let (lo, hi) = (i.min(j), i.max(j));
+                    mass[row][col] = if hi - lo < 4 {
+                        r.band[lo][hi - lo]
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            // x ← M⁻¹ K x by elimination, 20 000 times.
+            let mut x = [0.0; 64];
+            for (i, xi) in x.iter_mut().enumerate().take(n) {
+                *xi = 1.0 + (i as f64 * 0.37).sin();
+            }
+            let mut lambda = 0.0;
+            for _ in 0..20_000 {
+                let mut a = mass;
+                let mut y = [0.0; 64];
+                for i in 0..n {
+                    y[i] = (0..n).map(|j| stiff[i][j] * x[j]).sum();
+                }
+                for c in 0..n {
+                    for i in c + 1..n {
+                        let f = a[i][c] / a[c][c];
+                        for j in c..n {
+                            a[i][j] -= f * a[c][j];
+                        }
+                        y[i] -= f * y[c];
+                    }
+                }
+                for i in (0..n).rev() {
+                    let t: f64 = (i + 1..n).map(|j| a[i][j] * y[j]).sum();
+                    y[i] = (y[i] - t) / a[i][i];
+                }
+                let norm = (0..n).map(|i| y[i] * y[i]).sum::<f64>().sqrt();
+                lambda = (0..n).map(|i| y[i] * x[i]).sum::<f64>()
+                    / (0..n).map(|i| x[i] * x[i]).sum::<f64>();
+                for i in 0..n {
+                    x[i] = y[i] / norm;
+                }
+            }
+            let omega = r.stiffness_bound().0;
+            let want = lambda.sqrt();
+            assert!(
+                (omega - want).abs() < 1e-5 * want,
+                "K {K} pins {pins:?} EI {ei}: {omega} against {want}"
+            );
+        }
+        check::<4>(&[], 0.0);
+        check::<5>(&[4], 0.0);
+        check::<8>(&[], 0.0);
+        check::<8>(&[3, 7], 2.0);
+        check::<8>(&[1], 40.0);
+        check::<16>(&[15], 0.0);
+        check::<16>(&[8], 0.5);
+    }
+
     #[test]
     /// The largest frequency of the linearised rope, found by power iteration on finite
     /// differences of the forces along a swing, never passes the bound from the straight rope.
@@ -2082,7 +2240,12 @@ mod tests {
             }
             // Power iteration on -M⁻¹ ∂f/∂x by finite differences of the forces.
             let zero_v = [Vec2::default(); 8];
-            let f0 = r.forces(&r.strains(&r.pos, &zero_v)).0;
+            let f0 = r
+                .forces(
+                    &r.strains(&r.pos, &zero_v),
+                    &r.external(&Default::default()),
+                )
+                .0;
             let mut x: [Vec2<f64>; 8] = core::array::from_fn(|i| {
                 if i == 0 {
                     Vec2::default()
@@ -2094,7 +2257,12 @@ mod tests {
             for _ in 0..300 {
                 let h = 1e-7;
                 let moved: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + x[i] * h);
-                let f1 = r.forces(&r.strains(&moved, &zero_v)).0;
+                let f1 = r
+                    .forces(
+                        &r.strains(&moved, &zero_v),
+                        &r.external(&Default::default()),
+                    )
+                    .0;
                 let mut y: [Vec2<f64>; 8] = core::array::from_fn(|i| (f0[i] - f1[i]) * (1.0 / h));
                 y[0] = Vec2::default();
                 solve(&r.chol, &mut y);
