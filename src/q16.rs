@@ -416,6 +416,16 @@ mod tests {
                 assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
             }
         }
+        // Products at the edge of the range, where rounding decides saturation.
+        for a in [3i32, 65537, 11_863_283, -11_863_284, 1 << 20, -(1 << 30) - 7] {
+            for edge in [i32::MAX as i64, i32::MIN as i64] {
+                let b0 = ((edge << 16) / a as i64) as i32;
+                for b in b0 - 2..=b0 + 2 {
+                    assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
+                    assert_eq!(mul_halves(-a, b), mul_wide(-a, b), "{a} {b}");
+                }
+            }
+        }
         let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
         for _ in 0..200_000 {
             x ^= x << 13;
