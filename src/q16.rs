@@ -249,7 +249,12 @@ const INV_SQRT_GUESS: [u32; 24] = [
 /// fractional bits, shifted back. About 60 instructions there.
 fn inv_sqrt_bits(x: u32) -> u32 {
     let (mut m, mut k) = (x, 0u32);
-    for (below, shift) in [(1u32 << 16, 16u32), (1 << 24, 8), (1 << 28, 4), (1 << 30, 2)] {
+    for (below, shift) in [
+        (1u32 << 16, 16u32),
+        (1 << 24, 8),
+        (1 << 28, 4),
+        (1 << 30, 2),
+    ] {
         if m < below {
             m <<= shift;
             k += shift / 2;
@@ -262,7 +267,11 @@ fn inv_sqrt_bits(x: u32) -> u32 {
     for _ in 0..2 {
         // `z` stays at or below 1 (Newton's steps approach from below), so only `z = 1`
         // would overflow its square.
-        let z2 = if z >= 1 << 16 { 1 << 16 } else { (z * z + (1 << 15)) >> 16 };
+        let z2 = if z >= 1 << 16 {
+            1 << 16
+        } else {
+            (z * z + (1 << 15)) >> 16
+        };
         // `1 − u·z²` in 30 fractional bits, then `z += z·(1 − u·z²)/2`.
         let uz2 = high * z2 + ((low * z2) >> 16);
         let e = ((1u32 << 30) as i32).wrapping_sub(uz2 as i32);
@@ -417,7 +426,14 @@ mod tests {
             }
         }
         // Products at the edge of the range, where rounding decides saturation.
-        for a in [3i32, 65537, 11_863_283, -11_863_284, 1 << 20, -(1 << 30) - 7] {
+        for a in [
+            3i32,
+            65537,
+            11_863_283,
+            -11_863_284,
+            1 << 20,
+            -(1 << 30) - 7,
+        ] {
             for edge in [i32::MAX as i64, i32::MIN as i64] {
                 let b0 = ((edge << 16) / a as i64) as i32;
                 for b in b0 - 2..=b0 + 2 {

@@ -153,7 +153,7 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// Gram matrix `Σ (w/2)·N̂_a·N̂_b` (diagonal inverted, unit past `K - 2`).
     proj: [[[P::Scalar; 3]; 3]; K],
     weights: [P::Scalar; 3],
-    gram: [[P::Scalar; 4]; K],
+    gram: [[P::Scalar; 3]; K],
     /// Mass matrix in `f64` band form (`band[i][d] = M[i][i+d]`), kept to refactor on pins.
     band: [[f64; 4]; K],
     /// The same in the format, for the implicit stepper's products.
@@ -229,7 +229,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             ext: [[[zero; 4]; 4]; K],
             proj: [[[zero; 3]; 3]; K],
             weights: STRETCH_GAUSS.map(|(_, w)| P::Scalar::from_f64(w / 2.0)),
-            gram: [[zero; 4]; K],
+            gram: [[zero; 3]; K],
             band: [[0.0; 4]; K],
             mass_band: [[zero; 4]; K],
             bend: [[zero; 4]; K],
@@ -1619,7 +1619,7 @@ fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4], [f64; 3]) {
 fn project<T, S: Copy, const K: usize>(
     proj: &[[[S; 3]; 3]; K],
     weights: &[S; 3],
-    gram: &[[S; 4]; K],
+    gram: &[[S; 3]; K],
     field: &mut [[T; 3]; K],
 ) where
     T: Copy + Default + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
@@ -1648,9 +1648,9 @@ fn project<T, S: Copy, const K: usize>(
 /// The stretch points' quadratic basis per span and the factor of its Gram matrix (diagonal
 /// inverted; row `K - 1`, past the `K - 1` functions, is the identity's).
 #[allow(clippy::type_complexity)]
-fn projection_tables<const K: usize>() -> Option<([[[f64; 3]; 3]; K], [[f64; 4]; K])> {
+fn projection_tables<const K: usize>() -> Option<([[[f64; 3]; 3]; K], [[f64; 3]; K])> {
     let mut proj = [[[0.0; 3]; 3]; K];
-    let mut gram = [[0.0; 4]; K];
+    let mut gram = [[0.0; 3]; K];
     gram[K - 1][0] = 1.0;
     for e in 0..K - 3 {
         for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
@@ -1729,28 +1729,28 @@ fn curvature_band<const K: usize>(ds: f64) -> [[f64; 4]; K] {
     band
 }
 
-/// Banded Cholesky of a symmetric positive-definite `band` (`band[i][d] = A[i][i+d]`):
-/// `L[i][i-d]` in `out[i][d]`, except the diagonal, `1 / L[i][i]` from `inverse_sqrt`;
-/// `None` when it is not positive definite (or rounding makes it seem not).
-fn cholesky<S, const K: usize>(
-    band: &[[S; 4]; K],
+/// Banded Cholesky of a symmetric positive-definite `band` of `W` diagonals (`band[i][d] =
+/// A[i][i+d]`): `L[i][i-d]` in `out[i][d]`, except the diagonal, `1 / L[i][i]` from
+/// `inverse_sqrt`; `None` when it is not positive definite (or rounding makes it seem not).
+fn cholesky<S, const K: usize, const W: usize>(
+    band: &[[S; W]; K],
     inverse_sqrt: impl Fn(S) -> S,
-) -> Option<[[S; 4]; K]>
+) -> Option<[[S; W]; K]>
 where
     S: Copy + Default + PartialOrd + Sub<Output = S> + Mul<Output = S>,
 {
     let zero = S::default();
-    let mut l = [[zero; 4]; K];
+    let mut l = [[zero; W]; K];
     for i in 0..K {
-        for d in (0..4).rev() {
+        for d in (0..W).rev() {
             if d > i {
                 continue;
             }
             let j = i - d;
             let mut sum = band[j][d];
-            for k in 1..4 {
+            for k in 1..W {
                 // Σ over m < j of L[i][m] L[j][m], within the band.
-                if d + k < 4 && k <= j {
+                if d + k < W && k <= j {
                     sum = sum - l[i][d + k] * l[j][k];
                 }
             }
@@ -1810,15 +1810,15 @@ fn dense_solve<S: Scalar, const K: usize>(l: &[[S; K]; K], b: &mut [S; K]) {
 }
 
 /// Solves `L Lᵀ x = b` in place, `L` from [`cholesky`] in the format with its diagonal
-/// inverted.
-fn solve<T, S, const K: usize>(l: &[[S; 4]; K], b: &mut [T; K])
+/// inverted: `2·(2W − 1)·K` multiplies.
+fn solve<T, S, const K: usize, const W: usize>(l: &[[S; W]; K], b: &mut [T; K])
 where
     T: Copy + Sub<Output = T> + Mul<S, Output = T>,
     S: Copy,
 {
     for i in 0..K {
         let mut s = b[i];
-        for d in 1..4 {
+        for d in 1..W {
             if d <= i {
                 s = s - b[i - d] * l[i][d];
             }
@@ -1827,7 +1827,7 @@ where
     }
     for i in (0..K).rev() {
         let mut s = b[i];
-        for d in 1..4 {
+        for d in 1..W {
             if i + d < K {
                 s = s - b[i + d] * l[i + d][d];
             }
