@@ -1863,7 +1863,7 @@ fn largest_eigenvalue<const K: usize>(
         if i % 2 == 0 { ramp } else { -ramp }
     }));
     let norm = m_norm(&q);
-    if !(norm > 0.0) {
+    if norm.is_nan() || norm <= 0.0 {
         return 0.0;
     }
     q = q.map(|v| v / norm);
@@ -1886,7 +1886,7 @@ fn largest_eigenvalue<const K: usize>(
         }));
         let b = m_norm(&w);
         // A Krylov space closed (or rounding's floor): the Ritz values are exact.
-        if !(b > 1e-12 * alpha[j].abs()) {
+        if b.is_nan() || b <= 1e-12 * alpha[j].abs() {
             break;
         }
         beta[j] = b;
@@ -1922,7 +1922,7 @@ fn largest_eigenvalue<const K: usize>(
     };
     for _ in 0..64 {
         let mid = 0.5 * (low + high);
-        if !(mid > low && mid < high) {
+        if mid <= low || mid >= high || mid.is_nan() {
             break;
         }
         if above(mid) > 0 {
