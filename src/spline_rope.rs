@@ -1893,6 +1893,10 @@ fn largest_eigenvalue<const K: usize>(
         previous = q;
         q = w.map(|v| v / b);
     }
+    // Past `f64` (an `EA` near its range): no bound, which the caller reports as too stiff.
+    if alpha[..steps].iter().chain(&beta[..steps]).any(|v| !v.is_finite()) {
+        return f64::INFINITY;
+    }
     // Bisection between the largest diagonal and Gershgorin's bound of the tridiagonal.
     let (mut low, mut high) = (f64::MIN, 0.0f64);
     for j in 0..steps {

@@ -331,6 +331,12 @@ fn bad_input_is_an_error() {
         Err(Error::ZeroRestLength { .. })
     ));
     assert!(new(Vec2::new(f64::NAN, 0.0), b, 1.0, ok).is_err());
+    // A stiffness whose frequency is past the format: too stiff, no panic.
+    let beyond = Material {
+        stiffness: 1e300,
+        damping: 0.0,
+    };
+    assert_eq!(new(a, b, 1e-20, beyond), Err(Error::TooStiff));
     let mut rope = SplineRope::<Vec2<f64>, 5>::new(a, b, 1.0, ok, settings(G, 0.0)).unwrap();
     assert!(rope.step(-1.0).is_err());
     assert!(rope.step(f64::NAN).is_err());
