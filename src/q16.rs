@@ -246,7 +246,7 @@ const INV_SQRT_GUESS: [u32; 24] = [
 /// The raw bits of `1/√x` for the raw bits `x > 0` of a `Q16`, in 32-bit arithmetic only (no
 /// 64-bit multiply or divide, which a Cortex-M0 calls a library for): `x = u·2³⁰ / 4^k` with
 /// `u ∈ [1, 4)`, a guess from [`INV_SQRT_GUESS`] and two Newton steps on `1/√u` in 16
-/// fractional bits, shifted back. About 60 instructions there.
+/// fractional bits, shifted back: straight-line code, at most 117 instructions there.
 fn inv_sqrt_bits(x: u32) -> u32 {
     let (mut m, mut k) = (x, 0u32);
     for (below, shift) in [
@@ -263,7 +263,8 @@ fn inv_sqrt_bits(x: u32) -> u32 {
     // `u = m / 2³⁰` in its 16-bit halves, `z ≈ 1/√u ∈ (½, 1]` in 16 fractional bits: every
     // product fits 32 bits.
     let (high, low) = (m >> 16, m & 0xffff);
-    let mut z = INV_SQRT_GUESS[(m >> 27) as usize - 8];
+    // `m >> 27` is 8..=31 for any `x > 0`; the clamp only spares a bounds check.
+    let mut z = INV_SQRT_GUESS[(m >> 27).saturating_sub(8).min(23) as usize];
     for _ in 0..2 {
         // `z` stays at or below 1 (Newton's steps approach from below), so only `z = 1`
         // would overflow its square.

@@ -49,8 +49,8 @@
 //! nothing is added. Either way a rope released level keeps its energy over 10⁵ frames
 //! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
-//! Cost per substep: `3·(K - 3)` square roots and divisions, two banded solves and about
-//! `200·K` multiply-adds. Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`];
+//! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
+//! division), two banded solves and about `200·K` multiply-adds. Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`];
 //! `Q16` for ropes measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends
 //! 0.16 px from `f64` after 2 s); the construction (mass matrix, factors, bound) runs in
 //! `f64` and is stored in the format.
