@@ -1894,7 +1894,11 @@ fn largest_eigenvalue<const K: usize>(
         q = w.map(|v| v / b);
     }
     // Past `f64` (an `EA` near its range): no bound, which the caller reports as too stiff.
-    if alpha[..steps].iter().chain(&beta[..steps]).any(|v| !v.is_finite()) {
+    if alpha[..steps]
+        .iter()
+        .chain(&beta[..steps])
+        .any(|v| !v.is_finite())
+    {
         return f64::INFINITY;
     }
     // Bisection between the largest diagonal and Gershgorin's bound of the tridiagonal.
