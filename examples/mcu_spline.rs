@@ -3,8 +3,10 @@
 //! released level, 600 steps at 60 Hz and the curve drawn every frame, in Q16.16 on a
 //! Cortex-M0 and in f32 on a Cortex-M4F.
 //!
-//! It prints what `mcu_rope` prints; the checksum covers every control point after the last
-//! step, so equal checksums on the host and the device mean the step ran bit-identically:
+//! It prints what `mcu_rope` prints, plus `pin_instructions=`: one `set_pinned`, which
+//! factors the mass matrix and finds the substep bound again, in software `f64` on the M0.
+//! The checksum covers every control point after the last step, so equal checksums on the
+//! host and the device mean the step ran bit-identically:
 //!
 //! `cargo run --release --target thumbv6m-none-eabi --example mcu_spline` (Q16.16, micro:bit)
 //! `cargo run --release --target thumbv7em-none-eabihf --example mcu_spline` (f32, MPS2-AN386)
@@ -32,13 +34,17 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         stiffness: px(3000),
         damping: px(5),
     };
-    let rope: SplineRope<Vec2<S>, 8> = SplineRope::new(
+    let mut rope: SplineRope<Vec2<S>, 8> = SplineRope::new(
         Vec2::new(px(0), px(0)),
         Vec2::new(px(70), px(0)),
         px(7),
         stretch,
         settings,
     )?;
+    // A hand takes the free end and lets it go: each change finds the substep bound again.
+    let (pinned, pin) = meter.count_long(|| rope.set_pinned(7, true));
+    pinned?;
+    rope.set_pinned(7, false)?;
     let dt = S::ratio(1, 60);
     let mut scene = (rope, [Vec2::new(S::ZERO, S::ZERO); device::CURVE]);
     let costs = device::meter_frames(
@@ -55,11 +61,9 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         canvas.points(&view, rope.positions(), b'o');
     })?;
     let coordinates = rope.positions().iter().flat_map(|p| [p.x, p.y]);
-    Ok(device::report(
-        device::checksum(coordinates, bits),
-        &costs,
-        frame,
-    ))
+    let mut report = device::report(device::checksum(coordinates, bits), &costs, frame);
+    report.pin_instructions = Some(pin);
+    Ok(report)
 }
 
 #[cfg(not(target_os = "none"))]

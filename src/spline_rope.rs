@@ -154,9 +154,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     proj: [[[P::Scalar; 3]; 3]; K],
     weights: [P::Scalar; 3],
     gram: [[P::Scalar; 3]; K],
-    /// Mass matrix in `f64` band form (`band[i][d] = M[i][i+d]`), kept to refactor on pins.
-    band: [[f64; 4]; K],
-    /// The same in the format, for the implicit stepper's products.
+    /// The mass matrix in band form (`mass_band[i][d] = M[i][i+d]`), for the implicit
+    /// stepper's products.
     mass_band: [[P::Scalar; 4]; K],
     /// `EI` times it, in the format: the bending force is `−bend·x`.
     bend: [[P::Scalar; 4]; K],
@@ -230,7 +229,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             proj: [[[zero; 3]; 3]; K],
             weights: STRETCH_GAUSS.map(|(_, w)| P::Scalar::from_f64(w / 2.0)),
             gram: [[zero; 3]; K],
-            band: [[0.0; 4]; K],
             mass_band: [[zero; 4]; K],
             bend: [[zero; 4]; K],
             bending: zero,
@@ -250,32 +248,47 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         for (i, p) in rope.pos.iter_mut().enumerate() {
             *p = start.lerp(end, P::Scalar::from_f64(greville(i, K) / l * ds));
         }
-        let mut load = [0.0; K];
+        // The tables are written in place, one entry at a time: on a 16 KB microcontroller
+        // every table-sized temporary counts.
+        let (band, load) = mass_matrix::<K>(rho, ds);
+        for i in 0..K {
+            rope.load[i] = P::Scalar::from_f64(load[i]);
+            for d in 0..4 {
+                rope.mass_band[i][d] = P::Scalar::from_f64(band[i][d]);
+            }
+        }
+        // The Gram matrix of the quadratic splines at the stretch points, row `K - 1` (past
+        // the `K - 1` functions) the identity's.
+        let mut gram = [[0.0; 3]; K];
+        gram[K - 1][0] = 1.0;
         for e in 0..spans {
-            for &(xi, w) in &GAUSS {
-                let (n, _, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
-                let wds = w * ds / 2.0;
+            for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
+                let (_, dn, n) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
+                rope.quad[e][q].0 = P::Scalar::from_f64(w * ds / 2.0);
                 for a in 0..4 {
-                    load[e + a] += rho * n[a] * wds;
-                    for b in a..4 {
-                        rope.band[e + a][b - a] += rho * n[a] * n[b] * wds;
+                    rope.quad[e][q].1[a] = P::Scalar::from_f64(dn[a] / ds);
+                }
+                for a in 0..3 {
+                    rope.proj[e][q][a] = P::Scalar::from_f64(n[a]);
+                    for b in a..3 {
+                        gram[e + a][b - a] += w / 2.0 * n[a] * n[b];
                     }
                 }
             }
-            for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
-                let (_, dn, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
-                rope.quad[e][q] = (
-                    P::Scalar::from_f64(w * ds / 2.0),
-                    dn.map(|d| P::Scalar::from_f64(d / ds)),
-                );
+            let ext = extraction(e, K);
+            for r in 0..4 {
+                for k in 0..4 {
+                    rope.ext[e][r][k] = P::Scalar::from_f64(ext[r][k]);
+                }
             }
-            rope.ext[e] = extraction(e, K).map(|row| row.map(P::Scalar::from_f64));
         }
-        rope.load = load.map(P::Scalar::from_f64);
-        rope.mass_band = rope.band.map(|row| row.map(P::Scalar::from_f64));
-        let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
-        rope.proj = proj.map(|span| span.map(|q| q.map(P::Scalar::from_f64)));
-        rope.gram = gram.map(|row| row.map(P::Scalar::from_f64));
+        let gram =
+            cholesky(&gram, |x| 1.0 / crate::catenary::sqrt(x)).ok_or(Error::InvalidParameter)?;
+        for i in 0..K {
+            for d in 0..3 {
+                rope.gram[i][d] = P::Scalar::from_f64(gram[i][d]);
+            }
+        }
         rope.pinned[0] = true;
         rope.refactor()?;
         Ok(rope)
@@ -292,37 +305,41 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 P::Scalar::ONE / self.load[i]
             };
         }
-        let m = self.reduced(&self.band, (0.0, 1.0));
+        let ds = self.length.to_f64() / (K - 3) as f64;
+        let (band, _) = mass_matrix::<K>(self.mass.to_f64() / self.length.to_f64(), ds);
+        let m = self.reduced(&band, (0.0, 1.0));
         // The diagonal is kept inverted: a step multiplies where it would divide.
         let chol =
             cholesky(&m, |x| 1.0 / crate::catenary::sqrt(x)).ok_or(Error::InvalidParameter)?;
-        self.chol = chol.map(|row| row.map(P::Scalar::from_f64));
+        for i in 0..K {
+            for d in 0..4 {
+                self.chol[i][d] = P::Scalar::from_f64(chol[i][d]);
+            }
+        }
         // The stretch's stiffness on the straight rope, `EA·Bᵀ W Π B`: the strain of a
         // displacement along the rope, projected, back through the slopes; and the bending.
+        // From the tables the steps use (the bound is the stepped operator's), read in `f64`
+        // where they are used ([`Wide`]): a copy of them would cost a microcontroller's stack
+        // 2 KB.
         let ea = self.material.stiffness.to_f64();
-        let (proj, gram) = projection_tables::<K>().ok_or(Error::InvalidParameter)?;
-        let weights = STRETCH_GAUSS.map(|(_, w)| w / 2.0);
-        let quad = self
-            .quad
-            .map(|span| span.map(|(w, dn)| (w.to_f64(), dn.map(|d| d.to_f64()))));
         // `EI` 0 for the stretch alone; one closure type, so one eigenvalue search is linked.
         let ei = self.bending.to_f64();
         let curvature = if ei > 0.0 {
-            curvature_band::<K>(self.length.to_f64() / (K - 3) as f64)
+            curvature_band::<K>(ds)
         } else {
             [[0.0; 4]; K]
         };
-        // The tables by reference: a copy in each closure would cost the stack 2 KB.
-        let (quad, proj, gram, curvature) = (&quad, &proj, &gram, &curvature);
+        let (quad, proj, weights, gram) = (&self.quad, &self.proj, &self.weights, &self.gram);
+        let curvature = &curvature;
         let stiffness = |ei: f64| {
             move |x: &[f64; K]| -> [f64; K] {
-                let mut strain = [[0.0; 3]; K];
+                let mut strain = [[Wide(0.0); 3]; K];
                 for e in 0..K - 3 {
                     for (q, (_, dn)) in quad[e].iter().enumerate() {
-                        strain[e][q] = (0..4).map(|k| dn[k] * x[e + k]).sum();
+                        strain[e][q] = Wide((0..4).map(|k| dn[k].to_f64() * x[e + k]).sum());
                     }
                 }
-                project(proj, &weights, gram, &mut strain);
+                project(proj, weights, gram, &mut strain);
                 let mut y = if ei > 0.0 {
                     band_times(curvature, x).map(|b| ei * b)
                 } else {
@@ -330,8 +347,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 };
                 for e in 0..K - 3 {
                     for (q, (wds, dn)) in quad[e].iter().enumerate() {
+                        let pull = ea * wds.to_f64() * strain[e][q].0;
                         for k in 0..4 {
-                            y[e + k] += ea * wds * strain[e][q] * dn[k];
+                            y[e + k] += pull * dn[k].to_f64();
                         }
                     }
                 }
@@ -470,6 +488,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
 
     /// Pins (`true`) or frees control point `i`; a pinned point stops. Pinning the first or
     /// last holds the rope's end exactly; an inner one holds a point near the curve.
+    ///
+    /// Cost: the mass matrix is factored and the substep bound found again, in `f64`
+    /// (`O(K²)`): with 8 control points 3.8 million instructions on a Cortex-M0 (software
+    /// `f64`, about a quarter of a second at 16 MHz) and 1.1 million on a Cortex-M4F
+    /// (`examples/mcu_spline.rs`). Pin between frames, not every frame.
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] when nothing would be left
@@ -1614,8 +1637,33 @@ fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4], [f64; 3]) {
     (n, dn, n2)
 }
 
+/// An `f64` that multiplies by a format's numbers read in `f64`: the substep bound's
+/// arithmetic on the tables the steps use, without an `f64` copy of them.
+#[derive(Clone, Copy, Default)]
+struct Wide(f64);
+
+impl<S: Scalar> Mul<S> for Wide {
+    type Output = Wide;
+    fn mul(self, s: S) -> Wide {
+        Wide(self.0 * s.to_f64())
+    }
+}
+
+impl Sub for Wide {
+    type Output = Wide;
+    fn sub(self, other: Wide) -> Wide {
+        Wide(self.0 - other.0)
+    }
+}
+
+impl core::ops::AddAssign for Wide {
+    fn add_assign(&mut self, other: Wide) {
+        self.0 += other.0;
+    }
+}
+
 /// Replaces `field` (values at the stretch points) by its least-squares fit among the
-/// quadratic splines on the rope's breaks (tables from [`projection_tables`]).
+/// quadratic splines on the rope's breaks (tables from [`SplineRope::new`]).
 fn project<T, S: Copy, const K: usize>(
     proj: &[[[S; 3]; 3]; K],
     weights: &[S; 3],
@@ -1645,26 +1693,24 @@ fn project<T, S: Copy, const K: usize>(
     }
 }
 
-/// The stretch points' quadratic basis per span and the factor of its Gram matrix (diagonal
-/// inverted; row `K - 1`, past the `K - 1` functions, is the identity's).
-#[allow(clippy::type_complexity)]
-fn projection_tables<const K: usize>() -> Option<([[[f64; 3]; 3]; K], [[f64; 3]; K])> {
-    let mut proj = [[[0.0; 3]; 3]; K];
-    let mut gram = [[0.0; 3]; K];
-    gram[K - 1][0] = 1.0;
+/// The consistent mass matrix of a rope of density `rho` on spans of `ds`, `∫ ρ N_i N_j ds`
+/// in band form (`band[i][d] = M[i][i+d]`), and its row sums `∫ ρ N_i ds` (4-point Gauss per
+/// span: exact).
+fn mass_matrix<const K: usize>(rho: f64, ds: f64) -> ([[f64; 4]; K], [f64; K]) {
+    let (mut band, mut load) = ([[0.0; 4]; K], [0.0; K]);
     for e in 0..K - 3 {
-        for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
-            let (_, _, n) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
-            proj[e][q] = n;
-            for a in 0..3 {
-                for b in a..3 {
-                    gram[e + a][b - a] += w / 2.0 * n[a] * n[b];
+        for &(xi, w) in &GAUSS {
+            let (n, _, _) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
+            let wds = w * ds / 2.0;
+            for a in 0..4 {
+                load[e + a] += rho * n[a] * wds;
+                for b in a..4 {
+                    band[e + a][b - a] += rho * n[a] * n[b] * wds;
                 }
             }
         }
     }
-    let chol = cholesky(&gram, |x| 1.0 / crate::catenary::sqrt(x))?;
-    Some((proj, chol))
+    (band, load)
 }
 
 /// The Bézier extraction of span `e`: row `r` holds the weights of control points
@@ -2181,7 +2227,7 @@ mod tests {
                     stiff[row][col] = -(fp[i].x - fm[i].x) / (2.0 * h);
                     let (lo, hi) = (i.min(j), i.max(j));
                     mass[row][col] = if hi - lo < 4 {
-                        r.band[lo][hi - lo]
+                        r.mass_band[lo][hi - lo]
                     } else {
                         0.0
                     };

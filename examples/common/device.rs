@@ -15,6 +15,11 @@ pub const H: usize = 14;
 /// Counts the instructions `f` takes (0 where nothing can count them).
 pub trait Meter {
     fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32);
+    /// As [`count`](Self::count), for a call past the counter's 2²⁴ ticks (about a million
+    /// instructions; a dozen more for each wrap counted).
+    fn count_long<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+        self.count(f)
+    }
 }
 
 /// What a run reports.
@@ -30,6 +35,8 @@ pub struct Report {
     pub belly_mm: Option<i32>,
     /// The frame a scripted swipe cut the rope, where the scene cuts (0: it missed).
     pub cut_frame: Option<u32>,
+    /// What one pin change cost, in instructions, where the example meters it.
+    pub pin_instructions: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -170,6 +177,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         touching_frames: None,
         belly_mm: None,
         cut_frame: None,
+        pin_instructions: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -188,8 +196,10 @@ mod board {
     use core::arch::asm;
     use core::panic::PanicInfo;
 
+    use core::sync::atomic::{AtomicU32, Ordering};
+
     use cortex_m::peripheral::{SYST, syst::SystClkSource};
-    use cortex_m_rt::entry;
+    use cortex_m_rt::{entry, exception};
     use cortex_m_semihosting::{debug, hio};
 
     use super::*;
@@ -197,7 +207,7 @@ mod board {
     /// Instruction counts from SysTick: under `-icount` the core clock advances by the same
     /// amount per instruction, so ticks / ticks-per-instruction is exact.
     struct SysTick {
-        _syst: SYST,
+        syst: SYST,
         /// Ticks of the measurement itself (two back-to-back reads).
         overhead: u32,
         /// Ticks per 1000 instructions, from a sled of 1000 `nop`s.
@@ -218,16 +228,17 @@ mod board {
             syst.clear_current();
             syst.enable_counter();
             let mut s = SysTick {
-                _syst: syst,
+                syst,
                 overhead: 0,
                 per_1000: 1,
             };
             s.overhead = s.ticks(|| {});
-            // Two calls alike but for 125 more turns of a 4-instruction loop in one: the
-            // difference is 500 instructions, from a dozen bytes of code.
-            let long = s.ticks(|| countdown(250));
-            let short = s.ticks(|| countdown(125));
-            s.per_1000 = (2 * long.saturating_sub(short)).max(1);
+            // Two calls alike but for 25 000 more turns of a 4-instruction loop in one: the
+            // difference is 100 000 instructions, from a dozen bytes of code. (QEMU's counter
+            // reads are some 100 ticks coarse: a sled of 500 instructions was 0.8% off.)
+            let long = s.ticks(|| countdown(50_000));
+            let short = s.ticks(|| countdown(25_000));
+            s.per_1000 = (long.saturating_sub(short) / 100).max(1);
             s
         }
     }
@@ -248,16 +259,57 @@ mod board {
         }
     }
 
+    impl SysTick {
+        /// Instructions in `ticks`, the meter's own taken out.
+        fn instructions(&self, ticks: u64) -> u32 {
+            let n = (ticks.saturating_sub(u64::from(self.overhead)) * 1000
+                + u64::from(self.per_1000) / 2)
+                / u64::from(self.per_1000);
+            u32::try_from(n).unwrap_or(u32::MAX)
+        }
+    }
+
+    /// The counter's wraps during a [`Meter::count_long`].
+    static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+    #[exception]
+    fn SysTick() {
+        // A load and a store (the Cortex-M0 has no atomic add); nothing else writes it.
+        WRAPS.store(
+            WRAPS.load(Ordering::Relaxed).wrapping_add(1),
+            Ordering::Relaxed,
+        );
+    }
+
+    /// Ticks since the count began, from the wraps and the counter read so that they agree.
+    fn ticks_with_wraps() -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::Relaxed);
+            let current = SYST::get_current();
+            if WRAPS.load(Ordering::Relaxed) == wraps {
+                return (u64::from(wraps) << 24) + u64::from(0x00ff_ffff - current);
+            }
+        }
+    }
+
     impl Meter for SysTick {
         fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
             let mut out = None;
             let t = self.ticks(|| out = Some(f()));
-            let n = (t.saturating_sub(self.overhead) as u64 * 1000 + self.per_1000 as u64 / 2)
-                / self.per_1000 as u64;
             match out {
-                Some(r) => (r, n as u32),
+                Some(r) => (r, self.instructions(u64::from(t))),
                 None => fail(b"meter"),
             }
+        }
+
+        fn count_long<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+            WRAPS.store(0, Ordering::Relaxed);
+            self.syst.enable_interrupt();
+            let start = ticks_with_wraps();
+            let out = f();
+            let end = ticks_with_wraps();
+            self.syst.disable_interrupt();
+            (out, self.instructions(end - start))
         }
     }
 
@@ -377,6 +429,9 @@ mod board {
                 }
                 if let Some(n) = r.cut_frame {
                     put_number(b"cut_frame", n, false);
+                }
+                if let Some(n) = r.pin_instructions {
+                    put_number(b"pin_instructions", n, false);
                 }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
