@@ -1,5 +1,6 @@
 //! The crate's one error type.
 
+use crate::Scalar;
 use core::fmt;
 
 /// What went wrong. Every fallible call in the crate returns this; none of them panics.
@@ -106,6 +107,18 @@ pub(crate) fn check_points<P: crate::Point>(points: &[P]) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// [`Error::OutOfRange`] unless every coordinate of `points` is within `±bounds`.
+pub(crate) fn check_inside<P: crate::Point>(points: &[P], bounds: P::Scalar) -> Result<(), Error> {
+    let inside = points
+        .iter()
+        .all(|p| (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
+    if inside {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange)
+    }
 }
 
 /// `Ok(x)` when `x` is finite and `> 0`, else [`Error::InvalidParameter`].

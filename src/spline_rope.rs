@@ -97,7 +97,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
-use crate::error::{check_index, check_non_negative, check_points, check_positive};
+use crate::error::{check_index, check_inside, check_non_negative, check_points, check_positive};
 use core::ops::{Mul, Sub};
 
 use crate::contact::{Contacts, DrawnSpans};
@@ -190,7 +190,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// # Errors
     /// [`Error::InvalidParameter`] for a non-positive or non-finite mass or stiffness, or a
     /// negative damping; [`Error::ZeroRestLength`] when `start == end`; as
-    /// [`Settings::check`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for the ends.
+    /// [`Settings::check`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for the ends
+    /// (beyond the safe range or [`Settings::bounds`]).
     pub fn new(
         start: P,
         end: P,
@@ -208,6 +209,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         check_positive(mass)?;
         material.check()?;
         settings.check()?;
+        check_inside(&[start, end], settings.bounds)?;
         let length = start.distance(end);
         if !(length > P::Scalar::EPSILON && length.is_finite()) {
             return Err(Error::ZeroRestLength { a: 0, b: K - 1 });
@@ -444,9 +446,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// accuracy adds or removes the damping floor (see `MIN_DAMPING_RATIO`).
     ///
     /// # Errors
-    /// As [`Settings::check`]; the old settings stay.
+    /// As [`Settings::check`], and [`Error::OutOfRange`] for bounds that a control point is
+    /// already beyond; the old settings stay.
     pub fn set_settings(&mut self, settings: Settings<P, I>) -> Result<(), Error> {
         settings.check()?;
+        check_inside(&self.pos, settings.bounds)?;
         let before = core::mem::replace(&mut self.settings, settings);
         if let Err(e) = self.plan_damping() {
             self.settings = before;
@@ -520,10 +524,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// Moves control point `i` to `p` (teleports; velocity unchanged).
     ///
     /// # Errors
-    /// [`Error::IndexOutOfRange`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for `p`.
+    /// [`Error::IndexOutOfRange`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for `p`
+    /// (beyond the safe range or [`Settings::bounds`]).
     pub fn set_position(&mut self, i: usize, p: P) -> Result<(), Error> {
         check_index(i, K)?;
         check_points(&[p])?;
+        check_inside(&[p], self.settings.bounds)?;
         self.pos[i] = p;
         self.history = None;
         Ok(())
@@ -546,11 +552,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a `dt` that is not
-    /// positive; [`Error::NonFinite`] / [`Error::OutOfRange`] for `p` or its velocity.
+    /// positive; [`Error::NonFinite`] / [`Error::OutOfRange`] for `p` (beyond the safe range
+    /// or [`Settings::bounds`]) or its velocity.
     pub fn move_pinned(&mut self, i: usize, p: P, dt: P::Scalar) -> Result<(), Error> {
         check_index(i, K)?;
         check_positive(dt)?;
         check_points(&[p])?;
+        check_inside(&[p], self.settings.bounds)?;
         let v = (p - self.pos[i]) * (P::Scalar::ONE / dt);
         check_points(&[v])?;
         (self.pos[i], self.vel[i]) = (p, v);
@@ -1274,7 +1282,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 contacts.resolve_spans(pos, vel, &self.inv_load, (h, lag), &mut curve);
             }
         }
-        self.extra = [P::default(); K];
         let bounds = self.settings.bounds;
         let sane = self
             .pos
@@ -1282,6 +1289,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             .chain(&self.vel)
             .all(|p| p.is_finite() && (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
         if sane {
+            // The applied forces are spent; on a refused step they stay for the next.
+            self.extra = [P::default(); K];
             // A held point ends the step where its hand put it.
             for i in 0..K {
                 if self.pinned[i] {

@@ -3,7 +3,7 @@
 
 use crate::body::Body;
 use crate::contact::Contacts;
-use crate::error::{check_index, check_non_negative, check_points, check_positive};
+use crate::error::{check_index, check_inside, check_non_negative, check_points, check_positive};
 use crate::force::ForceField;
 use crate::integrator::{Integrator, Model, State, SymplecticEuler};
 use crate::shape::Shape;
@@ -91,18 +91,6 @@ fn flush_tiny<P: Point>(v: &mut P, limit: P::Scalar) -> bool {
         ok &= a <= limit;
     }
     ok
-}
-
-/// [`Error::OutOfRange`] unless every coordinate of `points` is within `±bounds`.
-fn check_inside<P: Point>(points: &[P], bounds: P::Scalar) -> Result<(), Error> {
-    let inside = points
-        .iter()
-        .all(|p| (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
-    if inside {
-        Ok(())
-    } else {
-        Err(Error::OutOfRange)
-    }
 }
 
 impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, Sh, T, I> {

@@ -1,11 +1,16 @@
-//! Random sequences of the public calls on a rope, with hostile values (NaN, ±∞, 0, huge,
-//! negative, `usize::MAX`, empty and tiny buffers), in `f32`, `f64` and `Q16`. After every
-//! call: nothing panicked, every position and velocity is finite and in range, and a call
-//! that returned an error left the rope exactly as it was.
+//! Random sequences of the public calls on a rope and on a spline rope (with each of its
+//! steppers), with hostile values (NaN, ±∞, 0, huge, negative, `usize::MAX`, empty and tiny
+//! buffers), in `f32`, `f64` and `Q16`. After every call: nothing panicked, every position
+//! and velocity is finite and in range, and a call that returned an error left the rope
+//! exactly as it was.
 #![cfg(all(feature = "std", feature = "fixed"))]
 
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
 use dunas::force::{AnchorSpring, Wind};
+use dunas::integrator::{ImplicitEuler, SymplecticEuler};
 use dunas::prelude::*;
+use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 use proptest::prelude::*;
 
 /// One public call and its arguments, as `f64`s converted to the format under test.
@@ -215,5 +220,208 @@ proptest! {
     #[test]
     fn q16_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
         holds_up::<Q16>(&calls);
+    }
+}
+
+/// One public call on a spline rope and its arguments.
+#[derive(Clone, Debug)]
+enum SplineCall {
+    Step(f64),
+    StepOnce(f64),
+    StepInWind {
+        dt: f64,
+        drag: f64,
+        gust: f64,
+    },
+    StepTouching {
+        dt: f64,
+        x: f64,
+        y: f64,
+        radius: f64,
+        thickness: f64,
+    },
+    SetPosition(usize, f64, f64),
+    SetVelocity(usize, f64, f64),
+    MovePinned(usize, f64, f64, f64),
+    SetPinned(usize, bool),
+    SetBending(f64),
+    ApplyForce(f64, f64, f64),
+    WeightsAt(f64),
+    SetSettings {
+        gravity: f64,
+        damping: f64,
+        bounds: f64,
+        accuracy: u8,
+    },
+    Sample(usize),
+    Energy,
+}
+
+fn spline_call() -> impl Strategy<Value = SplineCall> {
+    use SplineCall::*;
+    prop_oneof![
+        4 => hostile().prop_map(Step),
+        1 => hostile().prop_map(StepOnce),
+        1 => (hostile(), hostile(), hostile())
+            .prop_map(|(dt, drag, gust)| StepInWind { dt, drag, gust }),
+        2 => (hostile(), hostile(), hostile(), hostile(), hostile()).prop_map(
+            |(dt, x, y, radius, thickness)| StepTouching { dt, x, y, radius, thickness }
+        ),
+        2 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| SetPosition(i, x, y)),
+        1 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| SetVelocity(i, x, y)),
+        1 => (index(), hostile(), hostile(), hostile())
+            .prop_map(|(i, x, y, dt)| MovePinned(i, x, y, dt)),
+        2 => (index(), any::<bool>()).prop_map(|(i, pin)| SetPinned(i, pin)),
+        1 => hostile().prop_map(SetBending),
+        1 => (hostile(), hostile(), hostile()).prop_map(|(s, x, y)| ApplyForce(s, x, y)),
+        1 => hostile().prop_map(WeightsAt),
+        1 => (hostile(), hostile(), hostile(), 0..3u8).prop_map(|(gravity, damping, bounds, accuracy)| {
+            SetSettings { gravity, damping, bounds, accuracy }
+        }),
+        1 => (0..130usize).prop_map(Sample),
+        1 => Just(Energy),
+    ]
+}
+
+/// Makes the call; `Err` when the rope refused it, `Ok` otherwise.
+fn apply_spline<S: Scalar, I: SplineStepper>(
+    rope: &mut SplineRope<Vec2<S>, 8, I>,
+    call: &SplineCall,
+) -> Result<(), Error> {
+    let s = S::from_f64;
+    let v = |x: f64, y: f64| Vec2::new(s(x), s(y));
+    match *call {
+        SplineCall::Step(dt) => rope.step(s(dt)).map(drop),
+        SplineCall::StepOnce(h) => rope.step_once(s(h)),
+        SplineCall::StepInWind { dt, drag, gust } => {
+            let mut wind = Wind::still(s(drag));
+            wind.gust = v(gust, 0.0);
+            wind.gust_length = s(1.0);
+            rope.step_with(s(dt), &mut wind).map(drop)
+        }
+        SplineCall::StepTouching {
+            dt,
+            x,
+            y,
+            radius,
+            thickness,
+        } => {
+            let ball = [Collider::ball(v(x, y), s(radius))?];
+            let contacts = Contacts::new(&ball, s(thickness), Touch::Particles)?;
+            rope.step_touching(s(dt), (), &contacts).map(drop)
+        }
+        SplineCall::SetPosition(i, x, y) => rope.set_position(i, v(x, y)),
+        SplineCall::SetVelocity(i, x, y) => rope.set_velocity(i, v(x, y)),
+        SplineCall::MovePinned(i, x, y, dt) => rope.move_pinned(i, v(x, y), s(dt)),
+        SplineCall::SetPinned(i, pin) => rope.set_pinned(i, pin),
+        SplineCall::SetBending(ei) => rope.set_bending(s(ei)),
+        SplineCall::ApplyForce(at, x, y) => rope.apply_force(s(at), v(x, y)),
+        SplineCall::WeightsAt(at) => {
+            let (first, w) = rope.weights_at(s(at));
+            assert!(first <= 8 - 4);
+            let sum = w.iter().fold(0.0, |sum, w| sum + w.to_f64());
+            assert!(
+                w.iter().all(|w| w.is_finite()) && (sum - 1.0).abs() < 1e-3,
+                "{w:?}"
+            );
+            Ok(())
+        }
+        SplineCall::SetSettings {
+            gravity,
+            damping,
+            bounds,
+            accuracy,
+        } => {
+            let settings = Settings {
+                gravity: v(0.0, gravity),
+                damping: s(damping),
+                bounds: s(bounds),
+                accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][accuracy as usize],
+                ..*rope.settings()
+            };
+            rope.set_settings(settings)
+        }
+        SplineCall::Sample(len) => {
+            let mut out = vec![Vec2::new(S::ZERO, S::ZERO); len];
+            let n = rope.sample(&mut out)?;
+            assert!(n <= len && n >= 8 - 2);
+            // The curve stays in its control points' hull, so in the safe range.
+            assert!(out[..n].iter().all(|p| p.in_safe_range()));
+            assert_eq!(out[0], rope.positions()[0]);
+            assert_eq!(out[n - 1], rope.positions()[7]);
+            Ok(())
+        }
+        SplineCall::Energy => {
+            rope.energy();
+            Ok(())
+        }
+    }
+}
+
+fn spline_holds_up<S: Scalar, I: SplineStepper>(stepper: I, calls: &[SplineCall]) {
+    let s = S::from_f64;
+    let settings = Settings {
+        gravity: Vec2::new(s(0.0), s(-9.81)),
+        damping: s(0.5),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: s(300.0),
+        damping: s(0.5),
+    };
+    let mut rope: SplineRope<Vec2<S>, 8, I> = SplineRope::new(
+        Vec2::new(s(0.0), s(0.0)),
+        Vec2::new(s(7.0), s(0.0)),
+        s(1.0),
+        material,
+        settings.with_integrator(stepper),
+    )
+    .unwrap();
+    for call in calls {
+        let before = format!("{rope:?}");
+        if apply_spline(&mut rope, call).is_err() {
+            assert_eq!(
+                format!("{rope:?}"),
+                before,
+                "{call:?} was refused but changed the rope"
+            );
+        }
+        let bounds = rope.settings().bounds;
+        for p in rope.positions() {
+            assert!(p.in_safe_range(), "{call:?} left {p:?}");
+            assert!(
+                p.x.abs() <= bounds && p.y.abs() <= bounds,
+                "{call:?} left {p:?}"
+            );
+        }
+        for v in rope.velocities() {
+            assert!(v.in_safe_range(), "{call:?} left a velocity {v:?}");
+        }
+    }
+}
+
+/// Each format with each stepper.
+fn spline_ropes_hold_up<S: Scalar>(calls: &[SplineCall]) {
+    spline_holds_up::<S, _>(SymplecticEuler, calls);
+    spline_holds_up::<S, _>(ImplicitEuler::default(), calls);
+    spline_holds_up::<S, _>(Bdf2::default(), calls);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f32_spline_ropes_survive_hostile_calls(calls in prop::collection::vec(spline_call(), 1..40)) {
+        spline_ropes_hold_up::<f32>(&calls);
+    }
+
+    #[test]
+    fn f64_spline_ropes_survive_hostile_calls(calls in prop::collection::vec(spline_call(), 1..40)) {
+        spline_ropes_hold_up::<f64>(&calls);
+    }
+
+    #[test]
+    fn q16_spline_ropes_survive_hostile_calls(calls in prop::collection::vec(spline_call(), 1..40)) {
+        spline_ropes_hold_up::<Q16>(&calls);
     }
 }

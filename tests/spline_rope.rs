@@ -347,6 +347,34 @@ fn bad_input_is_an_error() {
         assert_eq!(rope.set_bending(ei), Err(Error::InvalidParameter));
     }
     assert_eq!((rope.bending(), rope.stiffness_bound()), (0.0, bound));
+    // Bounds hold the control points: no setting or move puts one beyond them.
+    let tight = Settings {
+        bounds: 0.5,
+        ..*rope.settings()
+    };
+    assert_eq!(rope.set_settings(tight), Err(Error::OutOfRange));
+    assert_eq!(
+        rope.set_position(1, Vec2::new(2e150, 0.0)),
+        Err(Error::OutOfRange)
+    );
+    let near = Settings {
+        bounds: 2.0,
+        ..*rope.settings()
+    };
+    rope.set_settings(near).unwrap();
+    assert_eq!(
+        rope.set_position(1, Vec2::new(3.0, 0.0)),
+        Err(Error::OutOfRange)
+    );
+    assert_eq!(
+        rope.move_pinned(0, Vec2::new(0.0, -3.0), 0.1),
+        Err(Error::OutOfRange)
+    );
+    // A refused step leaves everything as it was, the force applied for it too.
+    rope.apply_force(0.5, Vec2::new(0.0, 1e9)).unwrap();
+    let before = format!("{rope:?}");
+    assert_eq!(rope.step(1.0 / 60.0), Err(Error::Diverged));
+    assert_eq!(format!("{rope:?}"), before);
     let mut all = SplineRope::<Vec2<f64>, 4>::new(a, b, 1.0, ok, settings(G, 0.0)).unwrap();
     for i in 1..3 {
         all.set_pinned(i, true).unwrap();
