@@ -5,7 +5,8 @@
 //! in Q16.16 on a Cortex-M0 and in f32 on a Cortex-M4F.
 //!
 //! It prints what `mcu_rope` prints, plus `cut_frame=` (the frame the swipe cut, 0 for
-//! none); the checksum covers every particle after the last step, so equal checksums on
+//! none) and, on the device, `other_frame_instructions=` (the costliest frame but the
+//! swipe's, the falling pieces included); the checksum covers every particle after the last step, so equal checksums on
 //! the host and the device mean the cut and the fall ran bit-identically:
 //!
 //! `cargo run --release --target thumbv6m-none-eabi --example mcu_cut` (Q16.16, micro:bit)
@@ -73,6 +74,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let coordinates = rope.positions().iter().flat_map(|p| [p.x, p.y]);
     let mut report = device::report(device::checksum(coordinates, bits), &costs, frame);
     report.cut_frame = Some(cut_frame);
+    report.other_frame_instructions = Some(costs.costliest_but(CUT_AT));
     Ok(report)
 }
 

@@ -127,19 +127,42 @@ pub(crate) fn mul_wide(a: i32, b: i32) -> Q16 {
 
 /// The same product from 16-bit halves and 32-bit multiplies, for cores without a 64-bit
 /// multiplier (a Cortex-M0 would call a ~40-instruction library routine for `i64 * i64`).
-/// Bit-identical to the 64-bit form (tested on edge cases and 400 000 random pairs).
+/// When `|a|·|b|` is below about `2³¹` (a product within ±16384 or so, the common case) the
+/// sum cannot leave 32 bits and is taken there; otherwise in 64 bits, saturated as
+/// [`mul_wide`] does. Bit-identical to the 64-bit form (tested on edge cases and 400 000
+/// random pairs).
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline]
 pub(crate) fn mul_halves(a: i32, b: i32) -> Q16 {
     // a = ah·2¹⁶ + al with ah signed and al in 0..2¹⁶; the same for b.
     let (ah, al) = (a >> 16, (a & 0xffff) as u32);
     let (bh, bl) = (b >> 16, (b & 0xffff) as u32);
-    // a·b / 2¹⁶ = ah·bh·2¹⁶ + ah·bl + al·bh + al·bl / 2¹⁶, each product fitting 32 bits.
+    // round(a·b / 2¹⁶) = ah·bh·2¹⁶ + ah·bl + al·bh + round(al·bl / 2¹⁶), each term within
+    // 32 bits (al·bl + 2¹⁵ < 2³²). With |a| <= A·2¹⁶ and |b| <= B·2¹⁶ the result is within
+    // A·B·2¹⁶ + 1, so for A·B < 2¹⁵ the wrapping sum is exact.
+    let (big_a, big_b) = ((ah ^ (ah >> 31)) + 1, (bh ^ (bh >> 31)) + 1);
+    let low = al * bl;
+    if big_a * big_b < 1 << 15 {
+        let rounded = ((low + (1 << 15)) >> 16) as i32;
+        let sum = ((ah * bh) << 16)
+            .wrapping_add(ah * bl as i32)
+            .wrapping_add(al as i32 * bh)
+            .wrapping_add(rounded);
+        return Q16::from_bits(sum);
+    }
+    mul_halves_wide(ah, al, bh, bl)
+}
+
+/// [`mul_halves`] past the 32-bit sum: in 64-bit adds only (cheap everywhere), rounded and
+/// saturated as [`mul_wide`] does. Out of line: it is rare, and inlined it would cost
+/// flash at every product.
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cold]
+#[inline(never)]
+fn mul_halves_wide(ah: i32, al: u32, bh: i32, bl: u32) -> Q16 {
     let high = ah * bh; // |high| <= 2^30
     let mid = (ah * bl as i32) as i64 + (al as i32 * bh) as i64; // each |..| < 2^31
-    let low = (al * bl) as u64; // < 2^32
-    // Sum in 64-bit adds only (cheap everywhere), then round and saturate as mul_wide does.
-    let sum = ((high as i64) << 32) + (mid << 16) + low as i64;
+    let sum = ((high as i64) << 32) + (mid << 16) + (al * bl) as i64;
     Q16::saturate((sum + (1 << 15)) >> 16)
 }
 
@@ -440,6 +463,27 @@ mod tests {
                 for b in b0 - 2..=b0 + 2 {
                     assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
                     assert_eq!(mul_halves(-a, b), mul_wide(-a, b), "{a} {b}");
+                }
+            }
+        }
+        // Either side of the 32-bit sum's limit (`A·B < 2¹⁵`, `A` = |high half| rounded up),
+        // with every sign and the extreme low halves.
+        let lows = [0, 1, 0x7fff, 0x8000, 0xffff];
+        for big_a in [1, 2, 3, 7, 128, 181, 182, 1000, 16384, 32767, 32768] {
+            let edge = (1 << 15) / big_a;
+            for big_b in (edge - 2).max(1)..=(edge + 2).min(32768) {
+                for (ah, bh) in [
+                    (big_a - 1, big_b - 1),
+                    (-big_a, big_b - 1),
+                    (big_a - 1, -big_b),
+                    (-big_a, -big_b),
+                ] {
+                    for al in lows {
+                        for bl in lows {
+                            let (a, b) = ((ah << 16) | al, (bh << 16) | bl);
+                            assert_eq!(mul_halves(a, b), mul_wide(a, b), "{a} {b}");
+                        }
+                    }
                 }
             }
         }

@@ -37,6 +37,8 @@ pub struct Report {
     pub cut_frame: Option<u32>,
     /// What one pin change cost, in instructions, where the example meters it.
     pub pin_instructions: Option<u32>,
+    /// The costliest frame but one the example singles out (the cut's), where it does.
+    pub other_frame_instructions: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -97,6 +99,20 @@ pub struct Costs {
     pub mean: u32,
     /// Substeps of the last step.
     pub substeps: u16,
+    /// Which frame was the costliest (from 1), and the costliest of all the others.
+    pub costliest_at: u32,
+    pub runner_up: u32,
+}
+
+impl Costs {
+    /// The costliest frame but frame `skip` (from 1).
+    pub fn costliest_but(&self, skip: u32) -> u32 {
+        if self.costliest_at == skip {
+            self.runner_up
+        } else {
+            self.step + self.sample
+        }
+    }
 }
 
 /// Runs [`STEPS`] frames of `step` (1/60 s of the scene) then `sample` (what the frame
@@ -112,16 +128,22 @@ pub fn meter_frames<T, S: Scalar>(
         sample: 0,
         mean: 0,
         substeps: 0,
+        costliest_at: 0,
+        runner_up: 0,
     };
     let mut total: u64 = 0;
-    for _ in 0..STEPS {
+    for frame in 1..=STEPS as u32 {
         let (stepped, n) = meter.count(|| step(scene));
         let (sampled, m) = meter.count(|| sample(scene));
         costs.substeps = stepped?.substeps;
         sampled?;
         total += u64::from(n + m);
-        if n + m > costs.step + costs.sample {
-            (costs.step, costs.sample) = (n, m);
+        let costliest = costs.step + costs.sample;
+        if n + m > costliest {
+            costs.runner_up = costliest;
+            (costs.step, costs.sample, costs.costliest_at) = (n, m, frame);
+        } else {
+            costs.runner_up = costs.runner_up.max(n + m);
         }
     }
     costs.mean = (total / STEPS as u64) as u32;
@@ -178,6 +200,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         belly_mm: None,
         cut_frame: None,
         pin_instructions: None,
+        other_frame_instructions: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -440,6 +463,9 @@ mod board {
                     r.step_instructions + r.sample_instructions,
                     false,
                 );
+                if let Some(n) = r.other_frame_instructions {
+                    put_number(b"other_frame_instructions", n, false);
+                }
                 put_number(b"mean_frame_instructions", r.mean_frame_instructions, false);
                 put_number(b"ticks_per_1000_instructions", meter.per_1000, false);
                 put_number(b"stack_bytes", stack_high_water(), false);
