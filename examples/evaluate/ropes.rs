@@ -226,10 +226,10 @@ fn spline_error<const K: usize, I: SplineStepper>(
     (hausdorff(&curve[..n], reference), substeps)
 }
 
-/// The median cost of an f32 frame of the swinging 8-control-point spline rope (a 60 Hz step
-/// and 64 points), in ns.
-fn spline_frame_ns<I: SplineStepper>(run: &Run, stepper: I) -> f64 {
-    let mut fast = spline_rope::<f32, 8, I>(Scene::Swing, stepper);
+/// The median cost of an f32 frame of the swinging `K`-control-point spline rope (a 60 Hz
+/// step and 64 points), in ns.
+fn spline_frame_ns<const K: usize, I: SplineStepper>(run: &Run, stepper: I) -> f64 {
+    let mut fast = spline_rope::<f32, K, I>(Scene::Swing, stepper);
     for _ in 0..10 {
         fast.step(DT as f32).expect("stable");
     }
@@ -246,10 +246,87 @@ fn spline_frame_ns<I: SplineStepper>(run: &Run, stepper: I) -> f64 {
     })
 }
 
+/// A spline rope of `k` control points in one scene, stepped explicitly: its f32 frame (ns),
+/// its shape error, and the error of the least-squares fit of the reference by `k` control
+/// points (px).
+struct SplineSize {
+    scene: &'static str,
+    k: usize,
+    ns: f64,
+    error: f64,
+    fit: f64,
+}
+
+/// [`SplineSize`] for `K` control points in both scenes.
+fn spline_size<const K: usize>(
+    run: &Run,
+    references: &[Vec<Vec2<f64>>; 2],
+    sizes: &mut Vec<SplineSize>,
+) {
+    let ns = spline_frame_ns::<K, _>(run, SymplecticEuler);
+    for (k, scene, name) in [(0, Scene::Rest, "rest"), (1, Scene::Swing, "swing")] {
+        let (error, _) = spline_error::<K, _>(scene, SymplecticEuler, &references[k]);
+        let fit = best_fit::<K>(scene, &references[k]);
+        sizes.push(SplineSize {
+            scene: name,
+            k: K,
+            ns,
+            error,
+            fit,
+        });
+    }
+}
+
+/// How close `K` control points can hold `reference` at all, whatever the stepper: the
+/// least-squares fit of its particles (evenly spread over the material coordinate, as the
+/// reference rope's are) by the spline rope's basis, its drawn curve's distance to the
+/// reference (px). Not a strict floor (the fit minimises the mean square, the shape error is
+/// the largest distance), but a stepped rope far above it would be the stepper's fault.
+fn best_fit<const K: usize>(scene: Scene, reference: &[Vec2<f64>]) -> f64 {
+    let mut rope = spline_rope::<f64, K, SymplecticEuler>(scene, SymplecticEuler);
+    // The normal equations `Σ w wᵀ · p = Σ w r`, by Gaussian elimination (symmetric, positive).
+    let (mut a, mut b) = ([[0.0; K]; K], [Vec2::<f64>::default(); K]);
+    let last = (reference.len() - 1) as f64;
+    for (i, &r) in reference.iter().enumerate() {
+        let (first, w) = rope.weights_at(LENGTH * i as f64 / last);
+        for j in 0..4 {
+            for k in 0..4 {
+                a[first + j][first + k] += w[j] * w[k];
+            }
+            b[first + j] += r * w[j];
+        }
+    }
+    for j in 0..K {
+        for k in 0..j {
+            let (l, pivot_row) = (a[j][k] / a[k][k], a[k]);
+            for (x, y) in a[j][k..].iter_mut().zip(&pivot_row[k..]) {
+                *x -= l * y;
+            }
+            b[j] -= b[k] * l;
+        }
+    }
+    for j in (0..K).rev() {
+        let mut x = b[j];
+        for k in j + 1..K {
+            x -= b[k] * a[j][k];
+        }
+        b[j] = x * (1.0 / a[j][j]);
+        rope.set_position(j, b[j]).expect("in range");
+    }
+    let mut curve = vec![Vec2::default(); DRAWN_FOR_ERROR];
+    let n = rope.sample(&mut curve).expect("room");
+    hausdorff(&curve[..n], reference)
+}
+
 /// The spline rope against the 30-particle raw rope, at rest and swinging: shape error
 /// against the 200-particle reference, and cost per f32 frame (a 60 Hz step and 64 points),
 /// with each of its steppers.
-fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]) -> String {
+fn spline_rows(
+    run: &mut Run,
+    references: &[Vec<Vec2<f64>>; 2],
+    rows: &[RopeRow],
+    sizes: &[SplineSize],
+) -> String {
     let mut text = String::from(
         "Physics on the curve: `SplineRope` with 8 control points (its state is its drawn curve's control \
          points) beside the raw 30-particle rope, in the same scenes; explicit (symplectic Euler, substeps from \
@@ -266,13 +343,13 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
             .find(|r| r.n == 30 && r.smoothing == Smoothing::Polyline && r.scene == name);
         let (raw_ns, raw_error) = raw30.map_or((f64::NAN, f64::NAN), |r| (r.ns, r.error));
         let (error, substeps) = spline_error::<8, _>(scene, SymplecticEuler, &references[k]);
-        let ns = spline_frame_ns(run, SymplecticEuler);
+        let ns = spline_frame_ns::<8, _>(run, SymplecticEuler);
         let (implicit_error, implicit_substeps) =
             spline_error::<8, _>(scene, ImplicitEuler::default(), &references[k]);
-        let implicit_ns = spline_frame_ns(run, ImplicitEuler::default());
+        let implicit_ns = spline_frame_ns::<8, _>(run, ImplicitEuler::default());
         let (bdf2_error, bdf2_substeps) =
             spline_error::<8, _>(scene, Bdf2::default(), &references[k]);
-        let bdf2_ns = spline_frame_ns(run, Bdf2::default());
+        let bdf2_ns = spline_frame_ns::<8, _>(run, Bdf2::default());
         for (stepper, ns, substeps, error) in [
             ("explicit", ns, substeps, error),
             (
@@ -292,8 +369,25 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
             ));
         }
         if scene == Scene::Swing {
-            let (finer, finer_substeps) =
-                spline_error::<16, _>(scene, SymplecticEuler, &references[k]);
+            let swing = |k: usize| sizes.iter().find(|z| z.scene == name && z.k == k);
+            let (finer, fit8) = (
+                swing(16).map_or(f64::NAN, |z| z.error),
+                swing(8).map_or(f64::NAN, |z| z.fit),
+            );
+            let reach = match sizes.iter().find(|z| z.scene == name && z.fit <= raw_error) {
+                Some(z) => format!(
+                    "the fit first comes within the raw rope's {} px at {} control points, whose frame \
+                     costs {:.0} ns",
+                    num(raw_error),
+                    z.k,
+                    z.ns
+                ),
+                None => format!(
+                    "no fit up to {} control points comes within the raw rope's {} px",
+                    sizes.iter().map(|z| z.k).max().unwrap_or(0),
+                    num(raw_error)
+                ),
+            };
             run.target(
                 "swinging, the 8-control-point spline rope no farther from the 200-particle reference than the raw \
                  30-particle rope, at least 4× cheaper per frame",
@@ -311,14 +405,36 @@ fn spline_rows(run: &mut Run, references: &[Vec<Vec2<f64>>; 2], rows: &[RopeRow]
                 ),
                 error <= raw_error && raw_ns / ns >= 4.0,
                 &format!(
-                    "the swing folds the rope near its pin more sharply than 5 cubic spans follow: the error is \
-                     the spans' (16 control points come to {} px, at {finer_substeps} substeps a frame); and its \
-                     stretch waves ask for substeps (table above), each with 15 square roots, the strain's \
-                     projection and two banded solves. One implicit step a frame costs more on this soft rope",
-                    num(finer)
+                    "8 uniform cubic control points cannot hold the swinging shape that closely: the least-squares \
+                     fit of the reference itself by 8 control points is {} px away, and the stepped rope comes as \
+                     close ({} px); {reach} (section (c)). Each substep takes 15 square roots, the strain's \
+                     projection and two banded solves; one implicit step a frame costs more on this soft rope",
+                    num(fit8),
+                    num(error),
                 ),
             );
         }
+    }
+    text.push_str(
+        "\nWhat a number of control points can hold: each size stepped explicitly (f32 frame and shape error, as \
+         above), beside the least-squares fit of the reference itself by that many control points on its material \
+         coordinate (no stepping). A stepped rope near its fit has the error of its basis, not of its stepper.\n\n\
+         | control points | ns per frame | rest: shape error px | rest: fit px | swing: shape error px | swing: fit px |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for rest in sizes.iter().filter(|z| z.scene == "rest") {
+        let Some(swing) = sizes.iter().find(|z| z.scene == "swing" && z.k == rest.k) else {
+            continue;
+        };
+        text.push_str(&format!(
+            "| {} | {:.0} | {} | {} | {} | {} |\n",
+            rest.k,
+            rest.ns,
+            num(rest.error),
+            num(rest.fit),
+            num(swing.error),
+            num(swing.fit)
+        ));
     }
     text.push('\n');
     text
@@ -380,7 +496,17 @@ fn run_ropes(run: &mut Run) -> String {
         rope_rows::<45, 44>(run, &references, &mut rows);
         rope_rows::<60, 59>(run, &references, &mut rows);
     }
-    let mut text = spline_rows(run, &references, &rows);
+    let mut sizes = Vec::new();
+    if !run.quick {
+        spline_size::<6>(run, &references, &mut sizes);
+    }
+    spline_size::<8>(run, &references, &mut sizes);
+    if !run.quick {
+        spline_size::<10>(run, &references, &mut sizes);
+        spline_size::<12>(run, &references, &mut sizes);
+    }
+    spline_size::<16>(run, &references, &mut sizes);
+    let mut text = spline_rows(run, &references, &rows, &sizes);
     let mut best_ratio = 0.0f64;
     for scene in ["rest", "swing"] {
         let scene_rows: Vec<&RopeRow> = rows.iter().filter(|r| r.scene == scene).collect();
@@ -395,10 +521,18 @@ fn run_ropes(run: &mut Run) -> String {
                 pts.sort_by(|a, b| a.0.total_cmp(&b.0));
                 Series::line(smoothing_name(s), pts)
             })
+            .chain([Series::line(
+                "spline rope (its state the curve)",
+                sizes
+                    .iter()
+                    .filter(|z| z.scene == scene)
+                    .map(|z| (z.ns, z.error))
+                    .collect(),
+            )])
             .collect();
         let file = format!("ropes_{scene}.svg");
         let title = format!(
-            "Ropes of 4 to 60 particles ({scene}): cost per frame against shape error vs a 200-particle rope"
+            "Ropes of 4 to 60 particles and spline ropes of 6 to 16 control points ({scene}): cost per frame against shape error vs a 200-particle rope"
         );
         chart(
             &run.path(&file),
@@ -480,6 +614,29 @@ fn run_ropes(run: &mut Run) -> String {
         ],
         &csv_rows,
     );
+    let spline_csv: Vec<Vec<String>> = sizes
+        .iter()
+        .map(|z| {
+            vec![
+                z.scene.into(),
+                z.k.to_string(),
+                format!("{:.0}", z.ns),
+                format!("{:.4e}", z.error),
+                format!("{:.4e}", z.fit),
+            ]
+        })
+        .collect();
+    csv(
+        &run.path("spline_ropes.csv"),
+        &[
+            "scene",
+            "control_points",
+            "ns_per_frame",
+            "shape_error_px",
+            "least_squares_fit_px",
+        ],
+        &spline_csv,
+    );
     run.target("Dunas rope at least 4× cheaper per frame than the raw rope reaching the same shape error", format!("best 8-particle ratio {best_ratio:.1}×"), best_ratio >= 4.0,
         "every rope now has the same rest length and the errors converge (see ropes.csv), so the ratio is the method's: \
          the 8-particle Catmull-Rom rope is closer to the fine rope than the raw 8-particle one, about as close as a \
@@ -520,7 +677,7 @@ pub fn run(run: &mut Run) {
              (their frame is the step alone). Shape error is the Hausdorff distance between the surfaces \
              (bilinear between drawn points), the sharpest crease the largest angle between adjacent drawn \
              facets. Frames are f32 steps at 60 Hz with substeps from stiffness. \
-             Data: `ropes.csv`, `cloth.csv`.\n\n{ropes}{cloth}"
+             Data: `ropes.csv`, `spline_ropes.csv`, `cloth.csv`.\n\n{ropes}{cloth}"
         ),
     );
 }
