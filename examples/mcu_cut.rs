@@ -6,8 +6,9 @@
 //!
 //! It prints what `mcu_rope` prints, plus `cut_frame=` (the frame the swipe cut, 0 for
 //! none) and, on the device, `other_frame_instructions=` (the costliest frame but the
-//! swipe's, the falling pieces included); the checksum covers every particle after the last step, so equal checksums on
-//! the host and the device mean the cut and the fall ran bit-identically:
+//! swipe's, the falling pieces included); the checksum covers every particle after the
+//! last step, so equal checksums on the host and the device mean the cut and the fall ran
+//! bit-identically:
 //!
 //! `cargo run --release --target thumbv6m-none-eabi --example mcu_cut` (Q16.16, micro:bit)
 //! `cargo run --release --example mcu_cut` (Q16.16 on the host) or `... -- f32`.
