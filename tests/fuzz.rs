@@ -181,24 +181,37 @@ fn apply<S: Scalar>(rope: &mut Rope<Vec2<S>, 8>, call: &Call) -> Result<(), Erro
 
 fn holds_up<S: Scalar>(calls: &[Call]) {
     let mut rope = rope::<S>();
+    survives(&mut rope, calls, apply, |r| {
+        (r.positions(), r.velocities(), r.settings().bounds)
+    });
+}
+
+/// Makes each call on `rope`, then checks what the module promises: a refused call changed
+/// nothing, and every position (`state`: positions, velocities, bounds) is in range.
+fn survives<R: std::fmt::Debug, C: std::fmt::Debug, S: Scalar>(
+    rope: &mut R,
+    calls: &[C],
+    apply: impl Fn(&mut R, &C) -> Result<(), Error>,
+    state: impl Fn(&R) -> (&[Vec2<S>], &[Vec2<S>], S),
+) {
     for call in calls {
         let before = format!("{rope:?}");
-        if apply(&mut rope, call).is_err() {
+        if apply(rope, call).is_err() {
             assert_eq!(
                 format!("{rope:?}"),
                 before,
                 "{call:?} was refused but changed the rope"
             );
         }
-        let bounds = rope.settings().bounds;
-        for p in rope.positions() {
+        let (positions, velocities, bounds) = state(rope);
+        for p in positions {
             assert!(p.in_safe_range(), "{call:?} left {p:?}");
             assert!(
                 p.x.abs() <= bounds && p.y.abs() <= bounds,
                 "{call:?} left {p:?}"
             );
         }
-        for v in rope.velocities() {
+        for v in velocities {
             assert!(v.in_safe_range(), "{call:?} left a velocity {v:?}");
         }
     }
@@ -377,27 +390,9 @@ fn spline_holds_up<S: Scalar, I: SplineStepper>(stepper: I, calls: &[SplineCall]
         settings.with_integrator(stepper),
     )
     .unwrap();
-    for call in calls {
-        let before = format!("{rope:?}");
-        if apply_spline(&mut rope, call).is_err() {
-            assert_eq!(
-                format!("{rope:?}"),
-                before,
-                "{call:?} was refused but changed the rope"
-            );
-        }
-        let bounds = rope.settings().bounds;
-        for p in rope.positions() {
-            assert!(p.in_safe_range(), "{call:?} left {p:?}");
-            assert!(
-                p.x.abs() <= bounds && p.y.abs() <= bounds,
-                "{call:?} left {p:?}"
-            );
-        }
-        for v in rope.velocities() {
-            assert!(v.in_safe_range(), "{call:?} left a velocity {v:?}");
-        }
-    }
+    survives(&mut rope, calls, apply_spline, |r| {
+        (&r.positions()[..], &r.velocities()[..], r.settings().bounds)
+    });
 }
 
 /// Each format with each stepper.
