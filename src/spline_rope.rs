@@ -1283,11 +1283,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
         }
         let bounds = self.settings.bounds;
-        let sane = self
-            .pos
-            .iter()
-            .chain(&self.vel)
-            .all(|p| p.is_finite() && (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
+        // A NaN or an infinity is beyond any bounds.
+        let sane =
+            check_inside(&self.pos, bounds).is_ok() && check_inside(&self.vel, bounds).is_ok();
         if sane {
             // The applied forces are spent; on a refused step they stay for the next.
             self.extra = [P::default(); K];

@@ -86,7 +86,12 @@ fn call() -> impl Strategy<Value = Call> {
     ]
 }
 
-fn rope<S: Scalar>() -> Rope<Vec2<S>, 8> {
+/// A rope's `new` arguments: its ends, mass, material and settings.
+type Start<S> = (Vec2<S>, Vec2<S>, S, Material<S>, Settings<Vec2<S>>);
+
+/// What every rope under test starts from: 7 units level from the origin, 1 mass unit,
+/// stiffness 300, gravity 9.81, damping 0.5.
+fn start<S: Scalar>() -> Start<S> {
     let s = S::from_f64;
     let settings = Settings {
         gravity: Vec2::new(s(0.0), s(-9.81)),
@@ -97,14 +102,13 @@ fn rope<S: Scalar>() -> Rope<Vec2<S>, 8> {
         stiffness: s(300.0),
         damping: s(0.5),
     };
-    Rope::new(
-        Vec2::new(s(0.0), s(0.0)),
-        Vec2::new(s(7.0), s(0.0)),
-        s(1.0),
-        material,
-        settings,
-    )
-    .unwrap()
+    let ends = (Vec2::new(s(0.0), s(0.0)), Vec2::new(s(7.0), s(0.0)));
+    (ends.0, ends.1, s(1.0), material, settings)
+}
+
+fn rope<S: Scalar>() -> Rope<Vec2<S>, 8> {
+    let (a, b, mass, material, settings) = start::<S>();
+    Rope::new(a, b, mass, material, settings).unwrap()
 }
 
 /// Makes the call; `Err` when the rope refused it, `Ok` otherwise.
@@ -214,25 +218,6 @@ fn survives<R: std::fmt::Debug, C: std::fmt::Debug, S: Scalar>(
         for v in velocities {
             assert!(v.in_safe_range(), "{call:?} left a velocity {v:?}");
         }
-    }
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
-
-    #[test]
-    fn f32_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
-        holds_up::<f32>(&calls);
-    }
-
-    #[test]
-    fn f64_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
-        holds_up::<f64>(&calls);
-    }
-
-    #[test]
-    fn q16_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
-        holds_up::<Q16>(&calls);
     }
 }
 
@@ -372,24 +357,10 @@ fn apply_spline<S: Scalar, I: SplineStepper>(
 }
 
 fn spline_holds_up<S: Scalar, I: SplineStepper>(stepper: I, calls: &[SplineCall]) {
-    let s = S::from_f64;
-    let settings = Settings {
-        gravity: Vec2::new(s(0.0), s(-9.81)),
-        damping: s(0.5),
-        ..Settings::default()
-    };
-    let material = Material {
-        stiffness: s(300.0),
-        damping: s(0.5),
-    };
-    let mut rope: SplineRope<Vec2<S>, 8, I> = SplineRope::new(
-        Vec2::new(s(0.0), s(0.0)),
-        Vec2::new(s(7.0), s(0.0)),
-        s(1.0),
-        material,
-        settings.with_integrator(stepper),
-    )
-    .unwrap();
+    let (a, b, mass, material, settings) = start::<S>();
+    let settings = settings.with_integrator(stepper);
+    let mut rope: SplineRope<Vec2<S>, 8, I> =
+        SplineRope::new(a, b, mass, material, settings).unwrap();
     survives(&mut rope, calls, apply_spline, |r| {
         (&r.positions()[..], &r.velocities()[..], r.settings().bounds)
     });
@@ -404,6 +375,21 @@ fn spline_ropes_hold_up<S: Scalar>(calls: &[SplineCall]) {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f32_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<f32>(&calls);
+    }
+
+    #[test]
+    fn f64_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<f64>(&calls);
+    }
+
+    #[test]
+    fn q16_ropes_survive_hostile_calls(calls in prop::collection::vec(call(), 1..40)) {
+        holds_up::<Q16>(&calls);
+    }
 
     #[test]
     fn f32_spline_ropes_survive_hostile_calls(calls in prop::collection::vec(spline_call(), 1..40)) {
