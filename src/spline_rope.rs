@@ -50,10 +50,11 @@
 //! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
 //! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
-//! division), two banded solves and about `200·K` multiply-adds. Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`];
-//! `Q16` for ropes measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends
-//! 0.16 px from `f64` after 2 s); the construction (mass matrix, factors, bound) runs in
-//! `f64` and is stored in the format.
+//! division), two banded solves and about `126·(K − 3) + 38·K` multiplies (930 at
+//! `K = 8`); while a span is slack, a third solve and `6·K` more. Formats: `f32` and `f64`
+//! for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes measured in pixels (a 70 px rope
+//! of 7 mass units at `EA = 3000` ends 0.11 px from `f64` after 2 s); the construction
+//! (mass matrix, factors, bound) runs in `f64` and is stored in the format.
 //!
 //! ```
 //! use dunas::prelude::*;
@@ -126,8 +127,8 @@ const STRETCH_GAUSS: [(f64, f64); 3] = [
     (0.774_596_669_241_483_4, 0.555_555_555_555_556),
 ];
 
-/// A quadrature point of the stretch: `w·ds` and the four basis slopes `N'` by `s`.
-type StretchPoint<S> = (S, [S; 4]);
+/// A quadrature point of the stretch: `w·ds` and its slope weights (see [`slope_at`]).
+type StretchPoint<S> = (S, [S; 3]);
 
 /// A rope of `K` control points whose drawn curve is its state, stepped by `I` (see
 /// [`SplineStepper`]). See the [module](self).
@@ -136,7 +137,7 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     pos: [P; K],
     vel: [P; K],
     pinned: [bool; K],
-    /// At each span's quadrature points: `(w·ds, N'_0..3)`, `N'` by `s`.
+    /// At each span's stretch points: `w·ds` and the slope weights by `s`.
     quad: [[StretchPoint<P::Scalar>; 3]; K],
     /// `∫ ρ N_i ds`: the gravity load per unit of `g`, and each control point's mass for a
     /// force field.
@@ -223,7 +224,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             pos: [start; K],
             vel: [P::default(); K],
             pinned: [false; K],
-            quad: [[(zero, [zero; 4]); 3]; K],
+            quad: [[(zero, [zero; 3]); 3]; K],
             load: [zero; K],
             inv_load: [zero; K],
             chol: [[zero; 4]; K],
@@ -267,8 +268,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
                 let (_, dn, n) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
                 rope.quad[e][q].0 = P::Scalar::from_f64(w * ds / 2.0);
-                for a in 0..4 {
-                    rope.quad[e][q].1[a] = P::Scalar::from_f64(dn[a] / ds);
+                // `Σ_k N'_k x_k = Σ_a d_a·(x_(a+1) − x_a)` with `d_a = −Σ_(k≤a) N'_k`
+                // (the slopes sum to 0).
+                let mut d = 0.0;
+                for a in 0..3 {
+                    d -= dn[a];
+                    rope.quad[e][q].1[a] = P::Scalar::from_f64(d / ds);
                 }
                 for a in 0..3 {
                     rope.proj[e][q][a] = P::Scalar::from_f64(n[a]);
@@ -336,9 +341,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let stiffness = |ei: f64| {
             move |x: &[f64; K]| -> [f64; K] {
                 let mut strain = [[Wide(0.0); 3]; K];
+                let dx = differences(x);
                 for e in 0..K - 3 {
-                    for (q, (_, dn)) in quad[e].iter().enumerate() {
-                        strain[e][q] = Wide((0..4).map(|k| dn[k].to_f64() * x[e + k]).sum());
+                    for (q, (_, d)) in quad[e].iter().enumerate() {
+                        strain[e][q] = Wide(slope_at(&d.map(|d| d.to_f64()), &dx, e));
                     }
                 }
                 project(proj, weights, gram, &mut strain);
@@ -347,14 +353,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 } else {
                     [0.0; K]
                 };
+                let mut pull = [0.0; K];
                 for e in 0..K - 3 {
-                    for (q, (wds, dn)) in quad[e].iter().enumerate() {
-                        let pull = ea * wds.to_f64() * strain[e][q].0;
-                        for k in 0..4 {
-                            y[e + k] += pull * dn[k].to_f64();
-                        }
+                    for (q, (wds, d)) in quad[e].iter().enumerate() {
+                        let g = ea * wds.to_f64() * strain[e][q].0;
+                        add_pull(&mut pull, &d.map(|d| d.to_f64()), e, g);
                     }
                 }
+                spread(&mut y, &pull);
                 y
             }
         };
@@ -610,25 +616,27 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             pos: *x,
             slope: [[P::default(); 3]; K],
             inv: [[zero; 3]; K],
-            strain: [[Vec2::new(zero, zero); 3]; K],
+            fitted: [Vec2::new(zero, zero); K],
+            strain: [[zero; 3]; K],
+            taut: false,
         };
+        let mut strain = [[Vec2::new(zero, zero); 3]; K];
+        let (dx, dv) = (differences(x), differences(v));
         for e in 0..K - 3 {
-            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
-                let (mut d, mut dv) = (P::default(), P::default());
-                for k in 0..4 {
-                    d += x[e + k] * dn[k];
-                    dv += v[e + k] * dn[k];
-                }
+            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
+                let (d, dv) = (slope_at(weights, &dx, e), slope_at(weights, &dv, e));
                 // `|x'|` and its inverse from one inverse square root (in `Q16` no division).
                 let square = d.dot(d);
                 let inv = square.inv_sqrt();
                 out.slope[e][q] = d;
                 out.inv[e][q] = inv;
                 let rate = d.dot(dv) * inv;
-                out.strain[e][q] = Vec2::new(square * inv - P::Scalar::ONE, rate);
+                strain[e][q] = Vec2::new(square * inv - P::Scalar::ONE, rate);
             }
         }
-        project(&self.proj, &self.weights, &self.gram, &mut out.strain);
+        out.fitted = fit(&self.proj, &self.weights, &self.gram, &strain, false);
+        out.strain = evaluate(&self.proj, &out.fitted.map(|s| s.x));
+        out.taut = out.strain[..K - 3].iter().flatten().all(|&s| s >= zero);
         out
     }
 
@@ -649,28 +657,35 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
         }
         let (ea, c) = (self.material.stiffness, self.damping);
-        let one = P::Scalar::ONE;
-        let mut tension = [[P::Scalar::ZERO; 3]; K];
-        let mut taut = true;
-        for e in 0..K - 3 {
-            for q in 0..3 {
-                let Vec2 { x: strain, y: rate } = st.strain[e][q];
-                taut &= strain >= P::Scalar::ZERO;
-                tension[e][q] = stretch_tension(ea, one + strain) + c * rate;
-            }
-        }
-        // Taut, the tension is a quadratic spline already.
-        if !taut {
-            project(&self.proj, &self.weights, &self.gram, &mut tension);
-        }
-        for e in 0..K - 3 {
-            for (q, &(wds, dn)) in self.quad[e].iter().enumerate() {
-                let pull = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * wds);
-                for k in 0..4 {
-                    f[e + k] -= pull * dn[k];
+        // Taut, the tension is the quadratic spline `EA·ε̂ + c·dε̂/dt`.
+        let mut fitted = st.fitted.map(|s| ea * s.x + c * s.y);
+        if !st.taut {
+            // Slack, it falls short of that by `EA·ε̂ − T(ε̂)` (`stretch_tension`), which is
+            // projected too: the energy's gradient is the projected tension.
+            let mut short = [[P::Scalar::ZERO; 3]; K];
+            for (span, strains) in short.iter_mut().zip(&st.strain).take(K - 3) {
+                for (s, &strain) in span.iter_mut().zip(strains) {
+                    if strain < P::Scalar::ZERO {
+                        *s = ea * strain - stretch_tension(ea, P::Scalar::ONE + strain);
+                    }
                 }
             }
+            let short = fit(&self.proj, &self.weights, &self.gram, &short, true);
+            for (f, s) in fitted.iter_mut().zip(short) {
+                *f -= s;
+            }
         }
+        let tension = evaluate(&self.proj, &fitted);
+        let mut pull = [P::default(); K];
+        for e in 0..K - 3 {
+            for (q, (wds, d)) in self.quad[e].iter().enumerate() {
+                let g = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * *wds);
+                add_pull(&mut pull, d, e, g);
+            }
+        }
+        // The stretch pulls the rope together: minus the energy's gradient.
+        spread(&mut f, &pull.map(|g| -g));
+        let taut = st.taut;
         (f, Tensions { tension, taut })
     }
 
@@ -704,7 +719,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 if stiffness {
                     lin.transverse[e][q] = (t.tension[e][q].max(zero) * inv).min(ea) * h * h;
                     if !t.taut {
-                        let l = P::Scalar::ONE + st.strain[e][q].x;
+                        let l = P::Scalar::ONE + st.strain[e][q];
                         lin.axial[e][q] = stretch_slope(ea, l) * h * h;
                     }
                 }
@@ -720,12 +735,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let zero = P::Scalar::ZERO;
         let mut slope = [[P::default(); 3]; K];
         let mut along = [[zero; 3]; K];
+        let du = differences(u);
         for e in 0..K - 3 {
-            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
-                let mut d = P::default();
-                for k in 0..4 {
-                    d += u[e + k] * dn[k];
-                }
+            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
+                let d = slope_at(weights, &du, e);
                 slope[e][q] = d;
                 along[e][q] = lin.dir[e][q].dot(d);
             }
@@ -742,18 +755,18 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             project(&self.proj, &self.weights, &self.gram, &mut tension);
         }
         let c = lin.damping;
-        let mut out = [P::default(); K];
+        let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, &(wds, dn)) in self.quad[e].iter().enumerate() {
+            for (q, (wds, d)) in self.quad[e].iter().enumerate() {
                 let dir = lin.dir[e][q];
-                let pull = (dir * (tension[e][q] + c * strain[e][q])
+                let g = (dir * (tension[e][q] + c * strain[e][q])
                     + (slope[e][q] - dir * along[e][q]) * lin.transverse[e][q])
-                    * wds;
-                for k in 0..4 {
-                    out[e + k] += pull * dn[k];
-                }
+                    * *wds;
+                add_pull(&mut pull, d, e, g);
             }
         }
+        let mut out = [P::default(); K];
+        spread(&mut out, &pull);
         if self.bending > zero && lin.bend > zero {
             let h = lin.bend;
             for (o, b) in out.iter_mut().zip(band_times(&self.bend, u)) {
@@ -982,13 +995,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// quadratic splines (`Σ w·N̂_a·(x'/|x'|)·u'` per function `a`).
     fn strain_weights(&self, dir: &[[P; 3]; K], u: &[P; K]) -> [P::Scalar; K] {
         let mut out = [P::Scalar::ZERO; K];
+        let du = differences(u);
         for e in 0..K - 3 {
-            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
-                let mut d = P::default();
-                for k in 0..4 {
-                    d += u[e + k] * dn[k];
-                }
-                let along = dir[e][q].dot(d) * self.weights[q];
+            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
+                let along = dir[e][q].dot(slope_at(weights, &du, e)) * self.weights[q];
                 for a in 0..3 {
                     out[e + a] += along * self.proj[e][q][a];
                 }
@@ -999,19 +1009,18 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
 
     /// `Bᵀ·c`: the generalized forces of a strain field `Σ c_a N̂_a` along `dir`.
     fn strain_pull(&self, dir: &[[P; 3]; K], c: &[P::Scalar; K]) -> [P; K] {
-        let mut out = [P::default(); K];
+        let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, &(_, dn)) in self.quad[e].iter().enumerate() {
+            for (q, (_, d)) in self.quad[e].iter().enumerate() {
                 let mut strain = P::Scalar::ZERO;
                 for a in 0..3 {
                     strain += c[e + a] * self.proj[e][q][a];
                 }
-                let pull = dir[e][q] * (strain * self.weights[q]);
-                for k in 0..4 {
-                    out[e + k] += pull * dn[k];
-                }
+                add_pull(&mut pull, d, e, dir[e][q] * (strain * self.weights[q]));
             }
         }
+        let mut out = [P::default(); K];
+        spread(&mut out, &pull);
         self.free(out)
     }
 
@@ -1109,8 +1118,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     fn elastic_potential(&self, st: &Strains<P, K>) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
         for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
-            for (strain, &(wds, _)) in span.iter().zip(quad) {
-                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain.x) * wds;
+            for (&strain, &(wds, _)) in span.iter().zip(quad) {
+                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain) * wds;
             }
         }
         if self.bending > P::Scalar::ZERO {
@@ -1378,23 +1387,27 @@ impl<'a, P: Point, const K: usize> Spans<'a, P, K> {
         spans
     }
 
-    /// The spans' Bézier points: each mixes 1 to 3 control points (the zero weights are
-    /// skipped), and a span starts where the last ends (exactly, in every format).
+    /// The spans' Bézier points. Span `e`'s inner two lie on the leg from `p_(e+1)` to
+    /// `p_(e+2)` (at the extraction's weights: 4 products a span), and, the spans being of
+    /// one length, a span ends halfway between its last inner point and the next span's
+    /// first (the curve's ends are its end control points). A span starts where the last
+    /// ends, exactly, in every format.
     fn redraw(&mut self, pos: &[P; K]) {
-        let mut start = pos[0];
+        let inner = |e: usize| {
+            let leg = pos[e + 2] - pos[e + 1];
+            let ext = &self.ext[e];
+            (pos[e + 1] + leg * ext[1][2], pos[e + 1] + leg * ext[2][2])
+        };
+        let (mut start, mut here) = (pos[0], inner(0));
         for e in 0..K - 3 {
-            let mut points = [start; 4];
-            for (r, b) in points.iter_mut().enumerate().skip(1) {
-                *b = P::default();
-                for k in 0..4 {
-                    let w = self.ext[e][r][k];
-                    if w != P::Scalar::ZERO {
-                        *b += pos[e + k] * w;
-                    }
-                }
-            }
-            start = points[3];
-            self.spans[e] = Bezier::new_unchecked(points);
+            let (next, end) = if e + 1 < K - 3 {
+                let next = inner(e + 1);
+                (next, here.1.midpoint(next.0))
+            } else {
+                (here, pos[K - 1])
+            };
+            self.spans[e] = Bezier::new_unchecked([start, here.0, here.1, end]);
+            (start, here) = (end, next);
         }
     }
 }
@@ -1435,7 +1448,13 @@ struct Strains<P: Point, const K: usize> {
     pos: [P; K],
     slope: [[P; 3]; K],
     inv: [[P::Scalar; 3]; K],
-    strain: [[Vec2<P::Scalar>; 3]; K],
+    /// The strain `|x'| − 1` (`x`) and its rate (`y`), projected: the coefficients of their
+    /// quadratic splines.
+    fitted: [Vec2<P::Scalar>; K],
+    /// The projected strain at the stretch points.
+    strain: [[P::Scalar; 3]; K],
+    /// Whether it is `≥ 0` at every stretch point (every span taut).
+    taut: bool,
 }
 
 /// The tension at a rope's stretch points (force units) and whether every span is taut.
@@ -1646,7 +1665,7 @@ fn basis_in(span: usize, u: f64, k: usize) -> ([f64; 4], [f64; 4], [f64; 3]) {
 
 /// An `f64` that multiplies by a format's numbers read in `f64`: the substep bound's
 /// arithmetic on the tables the steps use, without an `f64` copy of them.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Default, PartialEq)]
 struct Wide(f64);
 
 impl<S: Scalar> Mul<S> for Wide {
@@ -1669,19 +1688,81 @@ impl core::ops::AddAssign for Wide {
     }
 }
 
-/// Replaces `field` (values at the stretch points) by its least-squares fit among the
-/// quadratic splines on the rope's breaks (tables from [`SplineRope::new`]).
-fn project<T, S: Copy, const K: usize>(
+/// The control points' differences `x_(i+1) − x_i` (the last entry 0): the cubic's slope
+/// is a quadratic spline on them (see [`slope_at`]).
+fn differences<T, const K: usize>(x: &[T; K]) -> [T; K]
+where
+    T: Copy + Default + Sub<Output = T>,
+{
+    core::array::from_fn(|i| {
+        if i + 1 < K {
+            x[i + 1] - x[i]
+        } else {
+            T::default()
+        }
+    })
+}
+
+/// The slope `x'` at a stretch point of span `e` with slope weights `d`, from the
+/// [`differences`] `dx`: `Σ_a d_a·dx_(e+a)` (3 products where the 4 basis slopes would
+/// take 4).
+#[inline]
+fn slope_at<T, S: Copy, const K: usize>(d: &[S; 3], dx: &[T; K], e: usize) -> T
+where
+    T: Copy + Default + core::ops::AddAssign + Mul<S, Output = T>,
+{
+    let mut out = T::default();
+    for (a, &da) in d.iter().enumerate() {
+        out += dx[e + a] * da;
+    }
+    out
+}
+
+/// Adds to `pull` the force `g` on the slope at a stretch point of span `e`, as forces on
+/// the [`differences`] (the transpose of [`slope_at`]); [`spread`] takes them to the
+/// control points.
+#[inline]
+fn add_pull<T, S: Copy, const K: usize>(pull: &mut [T; K], d: &[S; 3], e: usize, g: T)
+where
+    T: Copy + core::ops::AddAssign + Mul<S, Output = T>,
+{
+    for (a, &da) in d.iter().enumerate() {
+        pull[e + a] += g * da;
+    }
+}
+
+/// Adds to `out` the generalized forces of `pull`, forces on the [`differences`]:
+/// `out_i += pull_(i−1) − pull_i` (the transpose of [`differences`]).
+fn spread<T, const K: usize>(out: &mut [T; K], pull: &[T; K])
+where
+    T: Copy + core::ops::AddAssign + core::ops::SubAssign,
+{
+    for i in 0..K - 1 {
+        out[i] -= pull[i];
+        out[i + 1] += pull[i];
+    }
+}
+
+/// The least-squares fit of `field` (values at the stretch points) among the quadratic
+/// splines on the rope's breaks (tables from [`SplineRope::new`]): their `K − 1`
+/// coefficients (entry `K − 1` is 0). With `sparse`, the field's zeros are skipped: worth a
+/// test per value where most are 0.
+fn fit<T, S: Copy, const K: usize>(
     proj: &[[[S; 3]; 3]; K],
     weights: &[S; 3],
     gram: &[[S; 3]; K],
-    field: &mut [[T; 3]; K],
-) where
-    T: Copy + Default + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
+    field: &[[T; 3]; K],
+    sparse: bool,
+) -> [T; K]
+where
+    T: Copy + Default + PartialEq + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
 {
     let mut c = [T::default(); K];
     for e in 0..K - 3 {
         for q in 0..3 {
+            if sparse && field[e][q] == T::default() {
+                continue;
+            }
             let weighted = field[e][q] * weights[q];
             for a in 0..3 {
                 c[e + a] += weighted * proj[e][q][a];
@@ -1689,15 +1770,36 @@ fn project<T, S: Copy, const K: usize>(
         }
     }
     solve(gram, &mut c);
+    c
+}
+
+/// The values at the stretch points of the quadratic spline of coefficients `c`.
+fn evaluate<T, S: Copy, const K: usize>(proj: &[[[S; 3]; 3]; K], c: &[T; K]) -> [[T; 3]; K]
+where
+    T: Copy + Default + core::ops::AddAssign + Mul<S, Output = T>,
+{
+    let mut field = [[T::default(); 3]; K];
     for e in 0..K - 3 {
         for q in 0..3 {
-            let mut sum = T::default();
             for a in 0..3 {
-                sum += c[e + a] * proj[e][q][a];
+                field[e][q] += c[e + a] * proj[e][q][a];
             }
-            field[e][q] = sum;
         }
     }
+    field
+}
+
+/// Replaces `field` (values at the stretch points) by its least-squares fit among the
+/// quadratic splines ([`fit`], then [`evaluate`]).
+fn project<T, S: Copy, const K: usize>(
+    proj: &[[[S; 3]; 3]; K],
+    weights: &[S; 3],
+    gram: &[[S; 3]; K],
+    field: &mut [[T; 3]; K],
+) where
+    T: Copy + Default + PartialEq + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
+{
+    *field = evaluate(proj, &fit(proj, weights, gram, field, false));
 }
 
 /// The consistent mass matrix of a rope of density `rho` on spans of `ds`, `∫ ρ N_i N_j ds`
@@ -2041,6 +2143,39 @@ mod tests {
                 assert!((b - exact).abs() < 1e-12, "span {e} t {t}");
             }
         }
+    }
+
+    /// The drawn spans (inner points on a leg, ends halfway) are the extraction's.
+    #[test]
+    fn the_drawn_spans_are_the_extraction() {
+        fn check<const K: usize>() {
+            let ext: [[[f64; 4]; 4]; K] = core::array::from_fn(|e| {
+                if e + 3 < K {
+                    extraction(e, K)
+                } else {
+                    [[0.0; 4]; 4]
+                }
+            });
+            let pos: [crate::Vec2<f64>; K] = core::array::from_fn(|i| {
+                crate::Vec2::new((i as f64 * 1.7).sin(), (i as f64 * 0.9).cos())
+            });
+            let spans = Spans::new(&ext, &pos);
+            for e in 0..K - 3 {
+                for r in 0..4 {
+                    let mut b = crate::Vec2::default();
+                    for k in 0..4 {
+                        b += pos[e + k] * ext[e][r][k];
+                    }
+                    let drawn = spans.spans[e].points()[r];
+                    assert!(drawn.distance(b) < 1e-12, "K {K} span {e} point {r}");
+                }
+            }
+        }
+        check::<4>();
+        check::<5>();
+        check::<6>();
+        check::<8>();
+        check::<11>();
     }
 
     /// An undamped 1 m, 1 kg rope of 8 control points, `EA = 2000`, under `gravity`.
