@@ -175,6 +175,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     damping: P::Scalar,
     /// The strain damping's rate, `(c / EA)·ω²` (1/s).
     gamma: P::Scalar,
+    /// Substeps per unit of `rate·dt` at the accuracy (0 for an implicit stepper).
+    per_rate: P::Scalar,
     /// The last implicit step's start and length, for [`Bdf2`]; `None` after a change
     /// from outside.
     history: Option<([P; K], [P; K], P::Scalar)>,
@@ -243,6 +245,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             stretch_omega: zero,
             damping: zero,
             gamma: zero,
+            per_rate: zero,
             history: None,
             extra: [P::default(); K],
             time: zero,
@@ -376,14 +379,19 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The strain damping in force and its rate, from the stretch's `ω`, the material and
-    /// the accuracy.
+    /// the accuracy; and the substeps per unit of rate.
     fn plan_damping(&mut self) -> Result<(), Error> {
+        let explicit = self.settings.integrator.implicit().is_none();
+        self.per_rate = if explicit {
+            substeps_per_rate(&SymplecticEuler, self.settings.accuracy)
+        } else {
+            P::Scalar::ZERO
+        };
         let (ea, omega) = (
             self.material.stiffness.to_f64(),
             self.stretch_omega.to_f64(),
         );
         let mut c = self.material.damping.to_f64();
-        let explicit = self.settings.integrator.implicit().is_none();
         if explicit && self.settings.accuracy != Accuracy::Fine {
             c = c.max(MIN_DAMPING_RATIO * 2.0 * ea / omega);
         }
@@ -1204,10 +1212,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         contacts: Option<&Contacts<'_, P>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         check_non_negative(dt)?;
-        let per_rate = match self.settings.integrator.implicit() {
-            Some(_) => P::Scalar::ZERO,
-            None => substeps_per_rate(&SymplecticEuler, self.settings.accuracy),
-        };
         let rate = self.omega + self.gamma + self.settings.damping;
         let floor = contacts.map_or(P::Scalar::ZERO, |c| {
             let fastest = self
@@ -1218,7 +1222,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             // The curve's points move as weighted means of the control points.
             c.rate(fastest + self.settings.gravity.length() * dt, false)
         });
-        let (n, h, slow) = plan(dt, rate, per_rate, floor)?;
+        let (n, h, slow) = plan(dt, rate, self.per_rate, floor)?;
         let saturated = self.substeps(n, h, forces, contacts)?;
         Ok(StepInfo {
             substeps: n,
