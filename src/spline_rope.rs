@@ -50,7 +50,7 @@
 //! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
 //! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
-//! division), two banded solves and about `126·(K − 3) + 38·K` multiplies (930 at
+//! division), two banded solves and about `126·(K − 3) + 40·K` multiplies (950 at
 //! `K = 8`); while a span is slack, a third solve and `6·K` more. Formats: `f32` and `f64`
 //! for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes measured in pixels (a 70 px rope
 //! of 7 mass units at `EA = 3000` ends 0.11 px from `f64` after 2 s); the construction
@@ -127,9 +127,6 @@ const STRETCH_GAUSS: [(f64, f64); 3] = [
     (0.774_596_669_241_483_4, 0.555_555_555_555_556),
 ];
 
-/// A quadrature point of the stretch: `w·ds` and its slope weights (see [`slope_at`]).
-type StretchPoint<S> = (S, [S; 3]);
-
 /// A rope of `K` control points whose drawn curve is its state, stepped by `I` (see
 /// [`SplineStepper`]). See the [module](self).
 #[derive(Clone, Debug)]
@@ -137,8 +134,13 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     pos: [P; K],
     vel: [P; K],
     pinned: [bool; K],
-    /// At each span's stretch points: `w·ds` and the slope weights by `s`.
-    quad: [[StretchPoint<P::Scalar>; 3]; K],
+    /// At each span's stretch points, the slope's weights on the control points'
+    /// differences, by `s` (see [`slope_at`]).
+    quad: [[[P::Scalar; 3]; 3]; K],
+    /// A span's length `ds`: the stretch's pulls are summed per unit of it and scaled once,
+    /// so that no product in a step grows with a span's length (in `Q16` a long span's
+    /// pull saturated).
+    ds: P::Scalar,
     /// `∫ ρ N_i ds`: the gravity load per unit of `g`, and each control point's mass for a
     /// force field.
     load: [P::Scalar; K],
@@ -226,7 +228,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             pos: [start; K],
             vel: [P::default(); K],
             pinned: [false; K],
-            quad: [[(zero, [zero; 3]); 3]; K],
+            quad: [[[zero; 3]; 3]; K],
+            ds: P::Scalar::from_f64(ds),
             load: [zero; K],
             inv_load: [zero; K],
             chol: [[zero; 4]; K],
@@ -270,13 +273,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         for e in 0..spans {
             for (q, &(xi, w)) in STRETCH_GAUSS.iter().enumerate() {
                 let (_, dn, n) = basis_in(e, e as f64 + (xi + 1.0) / 2.0, K);
-                rope.quad[e][q].0 = P::Scalar::from_f64(w * ds / 2.0);
+
                 // `Σ_k N'_k x_k = Σ_a d_a·(x_(a+1) − x_a)` with `d_a = −Σ_(k≤a) N'_k`
                 // (the slopes sum to 0).
                 let mut d = 0.0;
                 for a in 0..3 {
                     d -= dn[a];
-                    rope.quad[e][q].1[a] = P::Scalar::from_f64(d / ds);
+                    rope.quad[e][q][a] = P::Scalar::from_f64(d / ds);
                 }
                 for a in 0..3 {
                     rope.proj[e][q][a] = P::Scalar::from_f64(n[a]);
@@ -346,7 +349,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let mut strain = [[Wide(0.0); 3]; K];
                 let dx = differences(x);
                 for e in 0..K - 3 {
-                    for (q, (_, d)) in quad[e].iter().enumerate() {
+                    for (q, d) in quad[e].iter().enumerate() {
                         strain[e][q] = Wide(slope_at(&d.map(|d| d.to_f64()), &dx, e));
                     }
                 }
@@ -358,12 +361,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 };
                 let mut pull = [0.0; K];
                 for e in 0..K - 3 {
-                    for (q, (wds, d)) in quad[e].iter().enumerate() {
-                        let g = ea * wds.to_f64() * strain[e][q].0;
+                    for (q, d) in quad[e].iter().enumerate() {
+                        let g = ea * weights[q].to_f64() * strain[e][q].0;
                         add_pull(&mut pull, &d.map(|d| d.to_f64()), e, g);
                     }
                 }
-                spread(&mut y, &pull);
+                spread(&mut y, &pull.map(|g| g * ds));
                 y
             }
         };
@@ -631,7 +634,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut strain = [[Vec2::new(zero, zero); 3]; K];
         let (dx, dv) = (differences(x), differences(v));
         for e in 0..K - 3 {
-            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
+            for (q, weights) in self.quad[e].iter().enumerate() {
                 let (d, dv) = (slope_at(weights, &dx, e), slope_at(weights, &dv, e));
                 // `|x'|` and its inverse from one inverse square root (in `Q16` no division).
                 let square = d.dot(d);
@@ -686,13 +689,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let tension = evaluate(&self.proj, &fitted);
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, (wds, d)) in self.quad[e].iter().enumerate() {
-                let g = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * *wds);
+            for (q, d) in self.quad[e].iter().enumerate() {
+                let g = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * self.weights[q]);
                 add_pull(&mut pull, d, e, g);
             }
         }
-        // The stretch pulls the rope together: minus the energy's gradient.
-        spread(&mut f, &pull.map(|g| -g));
+        // The quadrature's `w·ds`, its `ds` taken once; minus the energy's gradient: the
+        // stretch pulls the rope together.
+        spread(&mut f, &pull.map(|g| g * -self.ds));
         let taut = st.taut;
         (f, Tensions { tension, taut })
     }
@@ -745,7 +749,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut along = [[zero; 3]; K];
         let du = differences(u);
         for e in 0..K - 3 {
-            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
+            for (q, weights) in self.quad[e].iter().enumerate() {
                 let d = slope_at(weights, &du, e);
                 slope[e][q] = d;
                 along[e][q] = lin.dir[e][q].dot(d);
@@ -765,16 +769,16 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let c = lin.damping;
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, (wds, d)) in self.quad[e].iter().enumerate() {
+            for (q, d) in self.quad[e].iter().enumerate() {
                 let dir = lin.dir[e][q];
                 let g = (dir * (tension[e][q] + c * strain[e][q])
                     + (slope[e][q] - dir * along[e][q]) * lin.transverse[e][q])
-                    * *wds;
+                    * self.weights[q];
                 add_pull(&mut pull, d, e, g);
             }
         }
         let mut out = [P::default(); K];
-        spread(&mut out, &pull);
+        spread(&mut out, &pull.map(|g| g * self.ds));
         if self.bending > zero && lin.bend > zero {
             let h = lin.bend;
             for (o, b) in out.iter_mut().zip(band_times(&self.bend, u)) {
@@ -1005,8 +1009,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut out = [P::Scalar::ZERO; K];
         let du = differences(u);
         for e in 0..K - 3 {
-            for (q, (_, weights)) in self.quad[e].iter().enumerate() {
-                let along = dir[e][q].dot(slope_at(weights, &du, e)) * self.weights[q];
+            for (q, d) in self.quad[e].iter().enumerate() {
+                let along = dir[e][q].dot(slope_at(d, &du, e)) * self.weights[q];
                 for a in 0..3 {
                     out[e + a] += along * self.proj[e][q][a];
                 }
@@ -1019,7 +1023,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     fn strain_pull(&self, dir: &[[P; 3]; K], c: &[P::Scalar; K]) -> [P; K] {
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, (_, d)) in self.quad[e].iter().enumerate() {
+            for (q, d) in self.quad[e].iter().enumerate() {
                 let mut strain = P::Scalar::ZERO;
                 for a in 0..3 {
                     strain += c[e + a] * self.proj[e][q][a];
@@ -1125,9 +1129,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// The stretch and bending energy at strains `st`.
     fn elastic_potential(&self, st: &Strains<P, K>) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
-        for (span, quad) in st.strain.iter().zip(&self.quad).take(K - 3) {
-            for (&strain, &(wds, _)) in span.iter().zip(quad) {
-                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain) * wds;
+        for span in st.strain.iter().take(K - 3) {
+            for (&strain, &w) in span.iter().zip(&self.weights) {
+                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain) * w * self.ds;
             }
         }
         if self.bending > P::Scalar::ZERO {
@@ -1222,6 +1226,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             // The curve's points move as weighted means of the control points.
             c.rate(fastest + self.settings.gravity.length() * dt, false)
         });
+        let floor = floor.max(self.turn_rate());
         let (n, h, slow) = plan(dt, rate, self.per_rate, floor)?;
         let saturated = self.substeps(n, h, forces, contacts)?;
         Ok(StepInfo {
@@ -1235,6 +1240,26 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             saturated,
             snapped: 0,
         })
+    }
+
+    /// The substeps a second that `Q16`'s implicit step asks for (0 otherwise): its one
+    /// linearized Newton step (see [`backward_euler`](Self::backward_euler)) holds while
+    /// control points move less than half a span from their neighbours in a step, and a
+    /// flick of the rope's end can ask for more (the relative speed by its largest
+    /// coordinate).
+    fn turn_rate(&self) -> P::Scalar {
+        if !(P::Scalar::FIXED_POINT && self.per_rate == P::Scalar::ZERO) {
+            return P::Scalar::ZERO;
+        }
+        let mut fastest = P::Scalar::ZERO;
+        for pair in self.vel.windows(2) {
+            let dv = pair[1] - pair[0];
+            for axis in 0..P::DIM {
+                fastest = fastest.max(dv.coord(axis).abs());
+            }
+        }
+        let spans = P::Scalar::from_i16((K - 3) as i16);
+        fastest * P::Scalar::from_i16(2) * spans / self.length
     }
 
     /// One step of exactly `h` with the [`SplineStepper`], for measuring the method at its
@@ -1504,13 +1529,15 @@ struct Linearized<P: Point, const K: usize> {
 ///   [`SplineRope::stiffness_bound`] at the [`Accuracy`]'s fraction of `ω·h < 2`. One force
 ///   evaluation and two banded solves a substep; bounded energy.
 /// - [`ImplicitEuler`]: backward Euler, one step a frame at any stiffness (more only for
-///   contacts), for stiff ropes and cables where the explicit substeps would pass
+///   contacts and, in `Q16`, a flick), for stiff ropes and cables where the explicit substeps would pass
 ///   [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS) and slow time down. The new velocities
 ///   minimize the step's incremental potential: at most 4 Newton steps, each solved by
 ///   conjugate gradient ([`iterations`](ImplicitEuler::iterations) at most) preconditioned
 ///   by the mass, the bending and the taut stretch solved exactly, and halved until the
 ///   potential falls (in `Q16`, whose resolution cannot tell, one step taken whole:
-///   linearized backward Euler, which can gain energy on a stiff, fast-turning rope). Its
+///   linearized backward Euler, which can gain energy on a stiff, fast-turning rope, and
+///   stretches a span that turns too far in a step; so `Q16` takes substeps while a control
+///   point moves more than half a span from its neighbours in one). Its
 ///   fixed point is the equilibrium: 8 control points sag within 0.12% of the catenary at
 ///   `EA = 10⁸ N` on 1.2 kg. It never gains energy, and damps what a frame cannot
 ///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
@@ -1722,9 +1749,9 @@ where
     out
 }
 
-/// Adds to `pull` the force `g` on the slope at a stretch point of span `e`, as forces on
-/// the [`differences`] (the transpose of [`slope_at`]); [`spread`] takes them to the
-/// control points.
+/// Adds to `pull` what `g` at a stretch point of span `e` does to the [`differences`]
+/// through the weights `d` (the transpose of [`slope_at`]; a tension's pull takes the
+/// point's pull weights); [`spread`] takes them to the control points.
 #[inline]
 fn add_pull<T, S: Copy, const K: usize>(pull: &mut [T; K], d: &[S; 3], e: usize, g: T)
 where
