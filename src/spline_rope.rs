@@ -969,7 +969,20 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ) -> [P; K] {
         let zero = P::Scalar::ZERO;
         let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
-        let mut r = self.free(b.map(|bi| -bi));
+        // In `Q16` the system is solved for `δ / s`, `s` an eighth of the right side's
+        // largest coordinate (when past 1): its inner products, squares of momenta over
+        // masses, would saturate the format.
+        let mut largest = P::Scalar::ZERO;
+        if P::Scalar::FIXED_POINT {
+            for bi in b {
+                for axis in 0..P::DIM {
+                    largest = largest.max(bi.coord(axis).abs());
+                }
+            }
+        }
+        let scale = (largest * P::Scalar::ratio(1, 8)).max(P::Scalar::ONE);
+        let shrink = P::Scalar::ONE / scale;
+        let mut r = self.free(b.map(|bi| bi * -shrink));
         let mut out = [P::default(); K];
         let mut z = self.precondition(pre, &r);
         let mut p = z;
@@ -1000,7 +1013,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
             rz = next;
         }
-        out
+        out.map(|o| o * scale)
     }
 
     /// `B·u`: the strain that `u` adds along the directions `dir`, weighted onto the
@@ -1226,7 +1239,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             // The curve's points move as weighted means of the control points.
             c.rate(fastest + self.settings.gravity.length() * dt, false)
         });
-        let floor = floor.max(self.turn_rate());
+        // `Q16`'s one linearized Newton step keeps its precision while the rate times the
+        // step is at most 8 (see `within_precision`): past it, substeps (never slow motion).
+        let floor = match self.settings.integrator.implicit() {
+            Some(_) if P::Scalar::FIXED_POINT => floor.max(rate * P::Scalar::ratio(1, 8)),
+            _ => floor,
+        };
         let (n, h, slow) = plan(dt, rate, self.per_rate, floor)?;
         let saturated = self.substeps(n, h, forces, contacts)?;
         Ok(StepInfo {
@@ -1240,26 +1258,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             saturated,
             snapped: 0,
         })
-    }
-
-    /// The substeps a second that `Q16`'s implicit step asks for (0 otherwise): its one
-    /// linearized Newton step (see [`backward_euler`](Self::backward_euler)) holds while
-    /// control points move less than half a span from their neighbours in a step, and a
-    /// flick of the rope's end can ask for more (the relative speed by its largest
-    /// coordinate).
-    fn turn_rate(&self) -> P::Scalar {
-        if !(P::Scalar::FIXED_POINT && self.per_rate == P::Scalar::ZERO) {
-            return P::Scalar::ZERO;
-        }
-        let mut fastest = P::Scalar::ZERO;
-        for pair in self.vel.windows(2) {
-            let dv = pair[1] - pair[0];
-            for axis in 0..P::DIM {
-                fastest = fastest.max(dv.coord(axis).abs());
-            }
-        }
-        let spans = P::Scalar::from_i16((K - 3) as i16);
-        fastest * P::Scalar::from_i16(2) * spans / self.length
     }
 
     /// One step of exactly `h` with the [`SplineStepper`], for measuring the method at its
@@ -1529,15 +1527,16 @@ struct Linearized<P: Point, const K: usize> {
 ///   [`SplineRope::stiffness_bound`] at the [`Accuracy`]'s fraction of `ω·h < 2`. One force
 ///   evaluation and two banded solves a substep; bounded energy.
 /// - [`ImplicitEuler`]: backward Euler, one step a frame at any stiffness (more only for
-///   contacts and, in `Q16`, a flick), for stiff ropes and cables where the explicit substeps would pass
+///   contacts, and in `Q16` past `h·(ω + γ) = 8`), for stiff ropes and cables where the explicit substeps would pass
 ///   [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS) and slow time down. The new velocities
 ///   minimize the step's incremental potential: at most 4 Newton steps, each solved by
 ///   conjugate gradient ([`iterations`](ImplicitEuler::iterations) at most) preconditioned
 ///   by the mass, the bending and the taut stretch solved exactly, and halved until the
 ///   potential falls (in `Q16`, whose resolution cannot tell, one step taken whole:
-///   linearized backward Euler, which can gain energy on a stiff, fast-turning rope, and
-///   stretches a span that turns too far in a step; so `Q16` takes substeps while a control
-///   point moves more than half a span from its neighbours in one). Its
+///   linearized backward Euler, which can gain energy on a stiff, fast-turning rope; it
+///   keeps its precision while `h·(ω + γ) ≤ 8`, [`SplineRope::stiffness_bound`], and takes
+///   substeps past that, so a stiff rope in `Q16` costs about an eighth of the explicit
+///   substeps, each several times dearer). Its
 ///   fixed point is the equilibrium: 8 control points sag within 0.12% of the catenary at
 ///   `EA = 10⁸ N` on 1.2 kg. It never gains energy, and damps what a frame cannot
 ///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
