@@ -45,14 +45,8 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let (pinned, pin) = meter.count_long(|| rope.set_pinned(7, true));
     pinned?;
     rope.set_pinned(7, false)?;
-    let dt = S::ratio(1, 60);
     let mut scene = (rope, [Vec2::new(S::ZERO, S::ZERO); device::CURVE]);
-    let costs = device::meter_frames(
-        meter,
-        &mut scene,
-        |(rope, _)| rope.step(dt),
-        |(rope, curve)| rope.sample(curve).map(drop),
-    )?;
+    let costs = frames(meter, &mut scene)?;
     let (rope, mut curve) = scene;
     let drawn = rope.sample(&mut curve)?;
     let view = dunas::ascii::View::new(Vec2::new(px(-60), px(6)), px(3), px(6))?;
@@ -64,6 +58,22 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let mut report = device::report(device::checksum(coordinates, bits), &costs, frame);
     report.pin_instructions = Some(pin);
     Ok(report)
+}
+
+/// The metered frames: a step of 1/60 s and the curve drawn. Out of line, so that their
+/// locals and the pin change's `f64` work above are not summed on the stack.
+#[inline(never)]
+fn frames<S: Scalar>(
+    meter: &mut impl Meter,
+    scene: &mut (SplineRope<Vec2<S>, 8>, [Vec2<S>; device::CURVE]),
+) -> Result<device::Costs, Error> {
+    let dt = S::ratio(1, 60);
+    device::meter_frames(
+        meter,
+        scene,
+        |(rope, _)| rope.step(dt),
+        |(rope, curve)| rope.sample(curve).map(drop),
+    )
 }
 
 #[cfg(not(target_os = "none"))]
