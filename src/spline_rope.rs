@@ -103,7 +103,7 @@ use core::ops::{Mul, Sub};
 
 use crate::contact::{Contacts, DrawnSpans};
 use crate::force::{Accelerations, Bodies, ForceField};
-use crate::integrator::{ImplicitEuler, SymplecticEuler};
+use crate::integrator::{ImplicitEuler, SymplecticEuler, solve_scale};
 use crate::sampler::bernstein_weights;
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::substeps::{plan, substeps_per_rate};
@@ -970,18 +970,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ) -> [P; K] {
         let zero = P::Scalar::ZERO;
         let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
-        // In `Q16` the system is solved for `δ / s`, `s` an eighth of the right side's
-        // largest coordinate (when past 1): its inner products, squares of momenta over
-        // masses, would saturate the format.
-        let mut largest = P::Scalar::ZERO;
-        if P::Scalar::FIXED_POINT {
-            for bi in b {
-                for axis in 0..P::DIM {
-                    largest = largest.max(bi.coord(axis).abs());
-                }
-            }
-        }
-        let scale = (largest * P::Scalar::ratio(1, 8)).max(P::Scalar::ONE);
+        // Solved for `δ / s` (see `solve_scale`).
+        let scale = solve_scale(b);
         let shrink = P::Scalar::ONE / scale;
         let mut r = self.free(b.map(|bi| bi * -shrink));
         let mut out = [P::default(); K];

@@ -25,6 +25,21 @@ impl Default for ImplicitEuler {
     }
 }
 
+/// The scale `s` a conjugate gradient solves `A·x = b` at (for `x / s`, from `b / s`): in
+/// `Q16` an eighth of `b`'s largest coordinate when past 1, since its inner products
+/// (squares of momenta over masses) would saturate the format; 1 in floating point.
+pub(crate) fn solve_scale<P: Point>(b: &[P]) -> P::Scalar {
+    let mut largest = P::Scalar::ZERO;
+    if P::Scalar::FIXED_POINT {
+        for bi in b {
+            for axis in 0..P::DIM {
+                largest = largest.max(bi.coord(axis).abs());
+            }
+        }
+    }
+    (largest * P::Scalar::ratio(1, 8)).max(P::Scalar::ONE)
+}
+
 fn dot_all<P: Point>(a: &[P], b: &[P]) -> P::Scalar {
     let mut s = P::Scalar::ZERO;
     for (x, y) in a.iter().zip(b) {
@@ -120,7 +135,13 @@ impl Integrator for ImplicitEuler {
             *ri = if free(i) { *ri - *kvi } else { zero };
         }
 
-        // Conjugate gradient on (M(1 + hγ) - hC - h²K) Δv = b, pinned rows filtered out.
+        // Conjugate gradient on (M(1 + hγ) - hC - h²K) Δv = b, pinned rows filtered out, for
+        // Δv / s (see `solve_scale`).
+        let scale = solve_scale(Sh::flat(&r));
+        let shrink = P::Scalar::ONE / scale;
+        for ri in Sh::flat_mut(&mut r) {
+            *ri = *ri * shrink;
+        }
         let mut dv = Sh::filled(zero);
         let mut p = r;
         let mut ap = Sh::filled(zero);
@@ -163,7 +184,7 @@ impl Integrator for ImplicitEuler {
         }
         let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
         for ((x, v), &d) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&dv)) {
-            *v += d;
+            *v += d * scale;
             *x += *v * h;
         }
         ok

@@ -33,6 +33,7 @@ use core::fmt::Debug;
 
 pub use euler::{ExplicitEuler, SymplecticEuler};
 pub use implicit::ImplicitEuler;
+pub(crate) use implicit::solve_scale;
 pub(crate) use model::tiny_length;
 pub use model::{Model, State};
 pub use rk4::Rk4;
