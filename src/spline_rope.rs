@@ -1186,7 +1186,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// Advances by `dt` seconds with the [`SplineStepper`]: symplectic Euler in substeps
     /// from [`stiffness_bound`](Self::stiffness_bound) (see
     /// [`MassSpring::step`](crate::MassSpring::step) for the plan, the cap and the errors),
-    /// or one backward Euler step. Applied forces are used up.
+    /// or one backward Euler step (in `Q16` more past `h·(ω + γ) = 8`, see
+    /// [`SplineStepper`]). Applied forces are used up.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative or non-finite `dt`; [`Error::TooStiff`];
