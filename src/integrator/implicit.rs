@@ -26,18 +26,41 @@ impl Default for ImplicitEuler {
 }
 
 /// The scale `s` a conjugate gradient solves `A·x = b` at (for `x / s`, from `b / s`): in
-/// `Q16` an eighth of `b`'s largest coordinate when past 1, since its inner products
-/// (squares of momenta over masses) would saturate the format; 1 in floating point.
+/// `Q16` the power of two that brings `b`'s largest coordinate into `[4, 8)` (from `2⁻¹²`
+/// to `2¹⁴`), since its inner products (squares of momenta over masses) would saturate
+/// the format when large and lose its resolution when small; 1 in floating point. A power
+/// of two, so `s` and `1 / s` are exact.
 pub(crate) fn solve_scale<P: Point>(b: &[P]) -> P::Scalar {
+    let mut scale = P::Scalar::ONE;
+    if !P::Scalar::FIXED_POINT {
+        return scale;
+    }
     let mut largest = P::Scalar::ZERO;
-    if P::Scalar::FIXED_POINT {
-        for bi in b {
-            for axis in 0..P::DIM {
-                largest = largest.max(bi.coord(axis).abs());
-            }
+    for bi in b {
+        for axis in 0..P::DIM {
+            largest = largest.max(bi.coord(axis).abs());
         }
     }
-    (largest * P::Scalar::ratio(1, 8)).max(P::Scalar::ONE)
+    if largest == P::Scalar::ZERO {
+        return scale;
+    }
+    let (two, half) = (P::Scalar::from_i16(2), P::Scalar::ratio(1, 2));
+    let (top, bottom) = (P::Scalar::from_i16(8), P::Scalar::from_i16(4));
+    for _ in 0..14 {
+        if largest < top {
+            break;
+        }
+        largest = largest * half;
+        scale = scale * two;
+    }
+    for _ in 0..12 {
+        if largest >= bottom {
+            break;
+        }
+        largest = largest * two;
+        scale = scale * half;
+    }
+    scale
 }
 
 fn dot_all<P: Point>(a: &[P], b: &[P]) -> P::Scalar {
@@ -188,5 +211,44 @@ impl Integrator for ImplicitEuler {
             *x += *v * h;
         }
         ok
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::solve_scale;
+    use crate::{Q16, Scalar, Vec2};
+
+    /// In `Q16` the scale is a power of two that brings the largest coordinate into
+    /// `[4, 8)` within its limits; in floating point it is 1.
+    #[test]
+    fn the_solve_scale_brings_the_largest_coordinate_to_a_few_units() {
+        for raw in [
+            1,
+            3,
+            100,
+            65_535,
+            65_536,
+            262_143,
+            524_288,
+            9_999_999,
+            i32::MAX,
+        ] {
+            for sign in [1, -1] {
+                let big = Q16::from_bits(raw.saturating_mul(sign));
+                let b = [
+                    Vec2::new(Q16::ZERO, big / Q16::from_i16(2)),
+                    Vec2::new(big, Q16::ZERO),
+                ];
+                let largest = big.abs();
+                let scale = solve_scale(&b);
+                assert_eq!(scale.to_bits().count_ones(), 1, "{raw}: {scale:?}");
+                let scaled = (largest / scale).to_f64();
+                let limited = scale == Q16::from_i16(1 << 14) || scale.to_bits() == 16;
+                assert!((4.0..8.0).contains(&scaled) || limited, "{raw}: {scaled}");
+            }
+        }
+        assert_eq!(solve_scale(&[Vec2::new(Q16::ZERO, Q16::ZERO)]), Q16::ONE);
+        assert_eq!(solve_scale(&[Vec2::new(1.0e6f32, 3.0)]), 1.0);
     }
 }
