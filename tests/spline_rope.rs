@@ -479,7 +479,7 @@ fn q16_follows_f64_in_pixels() {
 /// inner products (squares of momenta) saturated the format: a flicked end (400 px/s) grew
 /// the drawn rope past 700 px with 16 control points; and past `rate·h = 8` its one
 /// linearized step loses its precision (24 control points at `EA = 30 000` stretched the
-/// rope by half).
+/// rope by 43%).
 #[test]
 fn q16_implicit_holds_a_flick() {
     fn check<const K: usize>(ea: i16, c: i16, flick: bool) {
