@@ -17,36 +17,15 @@ use proptest::prelude::*;
 #[derive(Clone, Debug)]
 enum Call {
     Step(f64),
-    StepInWind {
-        dt: f64,
-        drag: f64,
-        gust: f64,
-    },
-    StepAnchored {
-        dt: f64,
-        x: f64,
-        rest: f64,
-        k: f64,
-    },
+    StepInWind { dt: f64, drag: f64, gust: f64 },
+    StepAnchored { dt: f64, x: f64, rest: f64, k: f64 },
     SetPosition(usize, f64, f64),
     SetVelocity(usize, f64, f64),
     Impulse(usize, f64, f64),
     SetInvMass(usize, f64),
-    SetSettings {
-        gravity: f64,
-        damping: f64,
-        bounds: f64,
-        accuracy: u8,
-    },
-    Calibrate {
-        target: f64,
-        dt: f64,
-        steps: u32,
-    },
-    Sample {
-        smoothing: u8,
-        len: usize,
-    },
+    SetSettings(SettingsChange),
+    Calibrate { target: f64, dt: f64, steps: u32 },
+    Sample { smoothing: u8, len: usize },
     DrawnLength(f64),
 }
 
@@ -65,6 +44,38 @@ fn index() -> impl Strategy<Value = usize> {
     prop_oneof![4 => 0..8usize, 1 => prop::sample::select(vec![8, 9, usize::MAX])]
 }
 
+/// New settings from hostile numbers: gravity (down), air drag, bounds, accuracy.
+#[derive(Clone, Copy, Debug)]
+struct SettingsChange {
+    gravity: f64,
+    damping: f64,
+    bounds: f64,
+    accuracy: u8,
+}
+
+impl SettingsChange {
+    fn applied<S: Scalar, I: Copy>(&self, old: &Settings<Vec2<S>, I>) -> Settings<Vec2<S>, I> {
+        Settings {
+            gravity: Vec2::new(S::ZERO, S::from_f64(self.gravity)),
+            damping: S::from_f64(self.damping),
+            bounds: S::from_f64(self.bounds),
+            accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][self.accuracy as usize],
+            ..*old
+        }
+    }
+}
+
+fn settings_change() -> impl Strategy<Value = SettingsChange> {
+    (hostile(), hostile(), hostile(), 0..3u8).prop_map(|(gravity, damping, bounds, accuracy)| {
+        SettingsChange {
+            gravity,
+            damping,
+            bounds,
+            accuracy,
+        }
+    })
+}
+
 fn call() -> impl Strategy<Value = Call> {
     prop_oneof![
         4 => hostile().prop_map(Call::Step),
@@ -76,9 +87,7 @@ fn call() -> impl Strategy<Value = Call> {
         1 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| Call::SetVelocity(i, x, y)),
         1 => (index(), hostile(), hostile()).prop_map(|(i, x, y)| Call::Impulse(i, x, y)),
         1 => (index(), hostile()).prop_map(|(i, w)| Call::SetInvMass(i, w)),
-        1 => (hostile(), hostile(), hostile(), 0..3u8).prop_map(|(gravity, damping, bounds, accuracy)| {
-            Call::SetSettings { gravity, damping, bounds, accuracy }
-        }),
+        1 => settings_change().prop_map(Call::SetSettings),
         1 => (hostile(), hostile(), 0..12u32)
             .prop_map(|(target, dt, steps)| Call::Calibrate { target, dt, steps }),
         1 => (0..4u8, 0..130usize).prop_map(|(smoothing, len)| Call::Sample { smoothing, len }),
@@ -135,19 +144,8 @@ fn apply<S: Scalar>(rope: &mut Rope<Vec2<S>, 8>, call: &Call) -> Result<(), Erro
         Call::SetVelocity(i, x, y) => rope.set_velocity(i, v(x, y)),
         Call::Impulse(i, x, y) => rope.apply_impulse(i, v(x, y)),
         Call::SetInvMass(i, w) => rope.set_inv_mass(i, s(w)),
-        Call::SetSettings {
-            gravity,
-            damping,
-            bounds,
-            accuracy,
-        } => {
-            let settings = Settings {
-                gravity: v(0.0, gravity),
-                damping: s(damping),
-                bounds: s(bounds),
-                accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][accuracy as usize],
-                ..*rope.settings()
-            };
+        Call::SetSettings(change) => {
+            let settings = change.applied(rope.settings());
             rope.set_settings(settings)
         }
         Call::Calibrate { target, dt, steps } => rope
@@ -245,12 +243,7 @@ enum SplineCall {
     SetBending(f64),
     ApplyForce(f64, f64, f64),
     WeightsAt(f64),
-    SetSettings {
-        gravity: f64,
-        damping: f64,
-        bounds: f64,
-        accuracy: u8,
-    },
+    SetSettings(SettingsChange),
     Sample(usize),
     Energy,
 }
@@ -273,9 +266,7 @@ fn spline_call() -> impl Strategy<Value = SplineCall> {
         1 => hostile().prop_map(SetBending),
         1 => (hostile(), hostile(), hostile()).prop_map(|(s, x, y)| ApplyForce(s, x, y)),
         1 => hostile().prop_map(WeightsAt),
-        1 => (hostile(), hostile(), hostile(), 0..3u8).prop_map(|(gravity, damping, bounds, accuracy)| {
-            SetSettings { gravity, damping, bounds, accuracy }
-        }),
+        1 => settings_change().prop_map(SetSettings),
         1 => (0..130usize).prop_map(Sample),
         1 => Just(Energy),
     ]
@@ -324,21 +315,7 @@ fn apply_spline<S: Scalar, I: SplineStepper, const K: usize>(
             );
             Ok(())
         }
-        SplineCall::SetSettings {
-            gravity,
-            damping,
-            bounds,
-            accuracy,
-        } => {
-            let settings = Settings {
-                gravity: v(0.0, gravity),
-                damping: s(damping),
-                bounds: s(bounds),
-                accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][accuracy as usize],
-                ..*rope.settings()
-            };
-            rope.set_settings(settings)
-        }
+        SplineCall::SetSettings(change) => rope.set_settings(change.applied(rope.settings())),
         SplineCall::Sample(len) => {
             let mut out = vec![Vec2::new(S::ZERO, S::ZERO); len];
             let n = rope.sample(&mut out)?;
