@@ -757,11 +757,17 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             for (q, weights) in self.quad[e].iter().enumerate() {
                 let d = slope_at(weights, &du, e);
                 slope[e][q] = d;
-                along[e][q] = lin.dir[e][q].dot(d);
+                if lin.stiffness {
+                    along[e][q] = lin.dir[e][q].dot(d);
+                }
                 rate[e][q] = lin.damp_dir[e][q].dot(d);
             }
         }
-        project(&self.proj, &self.weights, &self.gram, &mut rate);
+        let c = lin.damping;
+        // Without strain damping (the implicit steppers add no floor) its projection is skipped.
+        if c > zero {
+            project(&self.proj, &self.weights, &self.gram, &mut rate);
+        }
         let mut tension = [[zero; 3]; K];
         if lin.stiffness {
             let mut strain = along;
@@ -775,7 +781,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 project(&self.proj, &self.weights, &self.gram, &mut tension);
             }
         }
-        let c = lin.damping;
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
             for (q, d) in self.quad[e].iter().enumerate() {
