@@ -53,8 +53,16 @@
 //! division), two banded solves and about `126·(K − 3) + 40·K` multiplies (950 at
 //! `K = 8`); while a span is slack, a third solve and `6·K` more. Formats: `f32` and `f64`
 //! for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes measured in pixels (a 70 px rope
-//! of 7 mass units at `EA = 3000` ends 0.11 px from `f64` after 2 s); the construction
+//! of 7 mass units at `EA = 3000` ends 0.17 px from `f64` after 2 s); the construction
 //! (mass matrix, factors, bound) runs in `f64` and is stored in the format.
+//!
+//! Units: a step divides its equations by a mass unit `m̄`, a span's mass (`mass / (K − 3)`),
+//! or `EA / 2¹⁴` or `c / 2¹⁴` where more; explicit substeps are taken in velocity changes, not
+//! accelerations. So in `Q16` a rope's precision does not depend on its mass, and a whip far
+//! past the format's range is held: the `mcu_spline` rope 30 times lighter or 3 times
+//! heavier, or 5 times larger (350 px under 1 000 px/s², its end whipping at about
+//! 100 000 px/s² with 16 control points), ends within 1% of its length from `f64` after 2 s
+//! (`tests/spline_rope.rs`). What `Q16` clamps and reports is in [`SplineRope::step`].
 //!
 //! ```
 //! use dunas::prelude::*;
@@ -141,12 +149,14 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// so that no product in a step grows with a span's length (in `Q16` a long span's
     /// pull saturated).
     ds: P::Scalar,
-    /// `∫ ρ N_i ds`: the gravity load per unit of `g`, and each control point's mass for a
-    /// force field.
+    /// The mass unit `m̄` the step's equations are divided by (see the [module](self)).
+    unit: P::Scalar,
+    /// `∫ ρ N_i ds / m̄`: the gravity load per unit of `g`, per unit of a span's mass.
     load: [P::Scalar; K],
-    /// `1 / load`, 0 where pinned: the inverse masses a force field sees.
+    /// `1 / ∫ ρ N_i ds`, 0 where pinned: the inverse masses a force field and the contacts
+    /// see.
     inv_load: [P::Scalar; K],
-    /// The banded Cholesky factor of the mass matrix, pinned rows made identity:
+    /// The banded Cholesky factor of the mass matrix over `m̄`, pinned rows made identity:
     /// `chol[i][d]` is `L[i][i - d]`, except `chol[i][0] = 1 / L[i][i]`.
     chol: [[P::Scalar; 4]; K],
     /// Each span's Bézier extraction: Bézier point `r` is `Σ_k ext[e][r][k] · p_(e+k)`.
@@ -157,14 +167,15 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     proj: [[[P::Scalar; 3]; 3]; K],
     weights: [P::Scalar; 3],
     gram: [[P::Scalar; 3]; K],
-    /// The mass matrix in band form (`mass_band[i][d] = M[i][i+d]`), for the implicit
-    /// stepper's products.
+    /// The mass matrix over `m̄` in band form (`mass_band[i][d] = M[i][i+d] / m̄`), for the
+    /// implicit stepper's products.
     mass_band: [[P::Scalar; 4]; K],
-    /// `EI` times it, in the format: the bending force is `−bend·x`.
+    /// `EI / m̄` times it, in the format: the bending force over `m̄` is `−bend·x`.
     bend: [[P::Scalar; 4]; K],
     /// The bending stiffness `EI` (force · length²).
     bending: P::Scalar,
-    material: Material<P::Scalar>,
+    /// The stretch's `EA` and `c` over `m̄` (force over mass: 1/s² and 1/s).
+    stretch: Material<P::Scalar>,
     settings: Settings<P, I>,
     length: P::Scalar,
     mass: P::Scalar,
@@ -172,8 +183,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     omega: P::Scalar,
     /// The same for the stretch alone: what the strain damping acts on.
     stretch_omega: P::Scalar,
-    /// The strain damping in force: `material.damping`, at least [`MIN_DAMPING_RATIO`] of
-    /// critical on the fastest stretch wave (force · seconds).
+    /// The strain damping over `m̄`: `stretch.damping`, at least [`MIN_DAMPING_RATIO`] of
+    /// critical on the fastest stretch wave (1/s).
     damping: P::Scalar,
     /// The strain damping's rate, `(c / EA)·ω²` (1/s).
     gamma: P::Scalar,
@@ -182,7 +193,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// The last implicit step's start and length, for [`Bdf2`]; `None` after a change
     /// from outside.
     history: Option<([P; K], [P; K], P::Scalar)>,
-    /// Generalized forces applied for the next step ([`apply_force`](Self::apply_force)).
+    /// Generalized forces over `m̄` applied for the next step
+    /// ([`apply_force`](Self::apply_force)).
     extra: [P; K],
     time: P::Scalar,
 }
@@ -193,10 +205,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// `material.damping` the strain-rate damping `c` (force · seconds).
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive or non-finite mass or stiffness, or a
-    /// negative damping; [`Error::ZeroRestLength`] when `start == end`; as
+    /// [`Error::InvalidParameter`] for a non-positive or non-finite mass or stiffness, a
+    /// negative damping, or a mass unit (see the [module](self)) that rounds to zero in the
+    /// format (in `Q16`, a span's mass and `EA` and `c` over `2¹⁴` all below `2⁻¹⁷`);
+    /// [`Error::ZeroRestLength`] when `start == end`; as
     /// [`Settings::check`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for the ends
-    /// (beyond the safe range or [`Settings::bounds`]).
+    /// (beyond the safe range or [`Settings::bounds`]); [`Error::TooStiff`] when the substep
+    /// bound is beyond the format.
     pub fn new(
         start: P,
         end: P,
@@ -221,15 +236,33 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         let spans = K - 3;
         let l = length.to_f64();
-        let rho = mass.to_f64() / l;
         let ds = l / spans as f64;
+        // A span's mass, or more where `EA` or `c` over it would pass `2¹⁴` (in `Q16` a
+        // stiff rope of light spans).
+        let most = |x: P::Scalar| x.to_f64() / f64::from(1u32 << 14);
+        let unit = P::Scalar::from_f64(
+            (mass.to_f64() / spans as f64)
+                .max(most(material.stiffness))
+                .max(most(material.damping)),
+        );
         let zero = P::Scalar::ZERO;
+        if unit <= zero {
+            // A mass below the format's resolution.
+            return Err(Error::InvalidParameter);
+        }
+        let per_mass = |x: P::Scalar| P::Scalar::from_f64(x.to_f64() / unit.to_f64());
+        // Both within `2¹⁴`.
+        let stretch = Material {
+            stiffness: per_mass(material.stiffness),
+            damping: per_mass(material.damping),
+        };
         let mut rope = SplineRope {
             pos: [start; K],
             vel: [P::default(); K],
             pinned: [false; K],
             quad: [[[zero; 3]; 3]; K],
             ds: P::Scalar::from_f64(ds),
+            unit,
             load: [zero; K],
             inv_load: [zero; K],
             chol: [[zero; 4]; K],
@@ -240,7 +273,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             mass_band: [[zero; 4]; K],
             bend: [[zero; 4]; K],
             bending: zero,
-            material,
+            stretch,
             settings,
             length,
             mass,
@@ -259,7 +292,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         // The tables are written in place, one entry at a time: on a 16 KB microcontroller
         // every table-sized temporary counts.
-        let (band, load) = mass_matrix::<K>(rho, ds);
+        let (band, load) = mass_matrix::<K>(rope.density_over_unit(), ds);
         for i in 0..K {
             rope.load[i] = P::Scalar::from_f64(load[i]);
             for d in 0..4 {
@@ -311,15 +344,16 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// stable substep's rate. `f64`, `O(K)` for the factor, `O(K²)` for the rate (at most
     /// `K` Lanczos steps).
     fn refactor(&mut self) -> Result<(), Error> {
+        let spans = (K - 3) as f64;
+        let ds = self.length.to_f64() / spans;
+        let (band, load) = mass_matrix::<K>(self.density_over_unit(), ds);
         for i in 0..K {
             self.inv_load[i] = if self.pinned[i] {
                 P::Scalar::ZERO
             } else {
-                P::Scalar::ONE / self.load[i]
+                P::Scalar::from_f64(1.0 / (self.unit.to_f64() * load[i]))
             };
         }
-        let ds = self.length.to_f64() / (K - 3) as f64;
-        let (band, _) = mass_matrix::<K>(self.mass.to_f64() / self.length.to_f64(), ds);
         let m = self.reduced(&band, (0.0, 1.0));
         // The diagonal is kept inverted: a step multiplies where it would divide.
         let chol =
@@ -329,14 +363,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 self.chol[i][d] = P::Scalar::from_f64(chol[i][d]);
             }
         }
-        // The stretch's stiffness on the straight rope, `EA·Bᵀ W Π B`: the strain of a
+        // The stretch's stiffness on the straight rope over `m̄`, `EA·Bᵀ W Π B / m̄`: the strain of a
         // displacement along the rope, projected, back through the slopes; and the bending.
         // From the tables the steps use (the bound is the stepped operator's), read in `f64`
         // where they are used ([`Wide`]): a copy of them would cost a microcontroller's stack
         // 2 KB.
-        let ea = self.material.stiffness.to_f64();
+        let ea = self.stretch.stiffness.to_f64();
         // `EI` 0 for the stretch alone; one closure type, so one eigenvalue search is linked.
-        let ei = self.bending.to_f64();
+        let ei = self.bending.to_f64() / self.unit.to_f64();
         let curvature = if ei > 0.0 {
             curvature_band::<K>(ds)
         } else {
@@ -381,7 +415,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.plan_damping()
     }
 
-    /// The strain damping in force and its rate, from the stretch's `ω`, the material and
+    /// The strain damping over `m̄` and its rate, from the stretch's `ω`, the material and
     /// the accuracy; and the substeps per unit of rate.
     fn plan_damping(&mut self) -> Result<(), Error> {
         let explicit = self.settings.integrator.implicit().is_none();
@@ -390,11 +424,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         } else {
             P::Scalar::ZERO
         };
-        let (ea, omega) = (
-            self.material.stiffness.to_f64(),
-            self.stretch_omega.to_f64(),
-        );
-        let mut c = self.material.damping.to_f64();
+        let (ea, omega) = (self.stretch.stiffness.to_f64(), self.stretch_omega.to_f64());
+        let mut c = self.stretch.damping.to_f64();
         if explicit && self.settings.accuracy != Accuracy::Fine {
             c = c.max(MIN_DAMPING_RATIO * 2.0 * ea / omega);
         }
@@ -405,6 +436,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         } else {
             Err(Error::TooStiff)
         }
+    }
+
+    /// The density over the mass unit, `ρ / m̄` (1/length), in `f64`.
+    fn density_over_unit(&self) -> f64 {
+        self.mass.to_f64() / self.length.to_f64() / self.unit.to_f64()
     }
 
     /// `band` with pinned rows and columns made those of the identity.
@@ -499,9 +535,15 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let before = (self.bending, self.bend);
         self.bending = ei;
         let ds = self.length.to_f64() / (K - 3) as f64;
+        let per_mass = ei.to_f64() / self.unit.to_f64();
         self.bend =
-            curvature_band::<K>(ds).map(|row| row.map(|c| P::Scalar::from_f64(c * ei.to_f64())));
-        if let Err(e) = self.refactor() {
+            curvature_band::<K>(ds).map(|row| row.map(|c| P::Scalar::from_f64(c * per_mass)));
+        let fits = self.bend.iter().flatten().all(|b| b.is_finite());
+        if let Err(e) = if fits {
+            self.refactor()
+        } else {
+            Err(Error::TooStiff)
+        } {
             (self.bending, self.bend) = before;
             self.refactor()?;
             return Err(e);
@@ -514,7 +556,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ///
     /// Cost: the mass matrix is factored and the substep bound found again, in `f64`
     /// (`O(K²)`): with 8 control points 3.5 million instructions on a Cortex-M0 (software
-    /// `f64`, about a quarter of a second at 16 MHz) and 1.05 million on a Cortex-M4F
+    /// `f64`, about a quarter of a second at 16 MHz) and 0.86 million on a Cortex-M4F
     /// (`examples/mcu_spline.rs`). Pin between frames, not every frame.
     ///
     /// # Errors
@@ -614,8 +656,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             return Err(Error::InvalidParameter);
         }
         let (first, w) = self.weights_at(s);
+        let per_mass = P::Scalar::ONE / self.unit;
         for (k, &wk) in w.iter().enumerate() {
-            self.extra[first + k] += f * wk;
+            self.extra[first + k] += f * wk * per_mass;
         }
         Ok(())
     }
@@ -653,22 +696,29 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         out
     }
 
-    /// The generalized forces from outside: gravity and a field's accelerations `acc`
-    /// through each control point's mass, `(g + a_i)·∫ ρ N_i ds`, and the applied forces.
+    /// The generalized forces from outside over `m̄`: gravity and a field's accelerations
+    /// `acc` through each control point's mass, `(g + a_i)·∫ ρ N_i ds / m̄`, and the
+    /// applied forces.
     fn external(&self, acc: &[P; K]) -> [P; K] {
         core::array::from_fn(|i| (self.settings.gravity + acc[i]) * self.load[i] + self.extra[i])
     }
 
-    /// The rope's own generalized forces at strains `st`, stretch, strain damping and
-    /// bending, added to `external`; with the tension at each stretch point.
-    fn forces(&self, st: &Strains<P, K>, external: &[P; K]) -> ([P; K], Tensions<P::Scalar, K>) {
+    /// The rope's own generalized forces over `m̄` at strains `st`, stretch, strain damping
+    /// and bending, times `per` (1 for the forces, a substep's length for their impulses),
+    /// added to `external`; with the tension over `m̄`, times `per`, at each stretch point.
+    fn forces(
+        &self,
+        st: &Strains<P, K>,
+        external: &[P; K],
+        per: P::Scalar,
+    ) -> ([P; K], Tensions<P::Scalar, K>) {
         let mut f = *external;
         if self.bending > P::Scalar::ZERO {
             for (fi, b) in f.iter_mut().zip(self.bending_times(&st.pos)) {
-                *fi -= b;
+                *fi -= b * per;
             }
         }
-        let (ea, c) = (self.material.stiffness, self.damping);
+        let (ea, c) = (self.stretch.stiffness * per, self.damping * per);
         // Taut, the tension is the quadratic spline `EA·ε̂ + c·dε̂/dt`.
         let mut fitted = st.fitted.map(|s| ea * s.x + c * s.y);
         if !st.taut {
@@ -715,7 +765,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         stiffness: bool,
     ) -> Linearized<P, K> {
         let zero = P::Scalar::ZERO;
-        let ea = self.material.stiffness;
+        let ea = self.stretch.stiffness;
         // `h²` is formed after each product: in `Q16` `1/60²` alone would be 1.2% short.
         let mut lin = Linearized {
             dir: [[P::default(); 3]; K],
@@ -804,7 +854,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         out
     }
 
-    /// `M·u` from the band.
+    /// `M·u / m̄` from the band.
     fn mass_times(&self, u: &[P; K]) -> [P; K] {
         band_times(&self.mass_band, u)
     }
@@ -829,7 +879,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let (x0, v0) = (*x0, *v0);
         let still = [P::default(); K];
         let start = self.strains(&x0, &v0);
-        let (_, t0) = self.forces(&start, external);
+        let (_, t0) = self.forces(&start, external, P::Scalar::ONE);
         // `D·u`: the drag and the strain damping, linear, frozen at the start.
         let damping = self.linearized(&start, &t0, h, false);
         let drag = h * self.settings.damping;
@@ -844,7 +894,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut first = zero;
         let mut pre = None;
         for _ in 0..NEWTON {
-            let (f, t) = self.forces(&st, external);
+            let (f, t) = self.forces(&st, external, P::Scalar::ONE);
             let change: [P; K] = core::array::from_fn(|i| w[i] - v0[i]);
             let (m, d) = (self.mass_times(&change), damp(&w));
             // `∇Φ`: the stretch's and bending's share of it is in `f`.
@@ -1070,8 +1120,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         banded: &[[P::Scalar; 4]; K],
     ) -> Option<StretchSolve<P, K>> {
         let zero = P::Scalar::ZERO;
-        let spans = P::Scalar::from_i16((K - 3) as i16);
-        let scale = (self.material.stiffness * h * h + lin.damping) * (self.length / spans);
+        let scale = (self.stretch.stiffness * h * h + lin.damping) * self.ds;
         let mut out = StretchSolve {
             dir: lin.dir,
             columns: [[P::default(); K]; K],
@@ -1148,12 +1197,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.free(z)
     }
 
-    /// The stretch and bending energy at strains `st`.
+    /// The stretch and bending energy at strains `st`, over `m̄`.
     fn elastic_potential(&self, st: &Strains<P, K>) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
         for span in st.strain.iter().take(K - 3) {
             for (&strain, &w) in span.iter().zip(&self.weights) {
-                e += stretch_energy(self.material.stiffness, P::Scalar::ONE + strain) * w * self.ds;
+                e += stretch_energy(self.stretch.stiffness, P::Scalar::ONE + strain) * w * self.ds;
             }
         }
         if self.bending > P::Scalar::ZERO {
@@ -1200,17 +1249,19 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             e += v[i].dot(mv[i]) * P::Scalar::ratio(1, 2)
                 - self.settings.gravity.dot(x[i]) * self.load[i];
         }
-        e
+        e * self.unit
     }
 
     /// Advances by `dt` seconds with the [`SplineStepper`]: symplectic Euler in substeps
     /// from [`stiffness_bound`](Self::stiffness_bound) (see
     /// [`MassSpring::step`](crate::MassSpring::step) for the plan, the cap and the errors),
     /// or one backward Euler step (in `Q16` more past `h·(ω + γ) = 8`, see
-    /// [`SplineStepper`]). Applied forces are used up. In `Q16` a generalized force that
-    /// reaches the format's limit (gravity on a span heavier than about 32767 / `|g|` mass
-    /// units; explicit, also the stretch and bending) is clamped and reported in
-    /// [`StepInfo::saturated`].
+    /// [`SplineStepper`]). Applied forces are used up. In `Q16`, a generalized force over
+    /// the mass unit `m̄` (see the [module](self)) past the format's range on a control
+    /// point is clamped and reported in [`StepInfo::saturated`]: from gravity and a field's
+    /// accelerations (gravity alone never, below `|g| = 32 767`) and from the applied
+    /// forces (a force `f` at a point adds up to `|f| / m̄`); explicitly, also a substep's
+    /// stretch and bending impulse or velocity change over `m̄`.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative or non-finite `dt`; [`Error::TooStiff`];
@@ -1308,8 +1359,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.substeps(1, h, &mut (), None).map(drop)
     }
 
-    /// `n` substeps of `h`, each ending with the contacts; whether a `Q16` field's force
-    /// saturated.
+    /// `n` substeps of `h`, each ending with the contacts; whether a `Q16` force or velocity
+    /// change was clamped (see [`step`](Self::step)).
     fn substeps<F: ForceField<P>>(
         &mut self,
         n: u16,
@@ -1335,17 +1386,23 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             field.apply(self.time, &bodies, &mut out);
             saturated |= out.saturated;
             let external = self.external(&added);
+            let fits = |u: &[P; K]| u.iter().all(|x| x.is_finite());
+            saturated |= P::Scalar::FIXED_POINT && !fits(&external);
             if let Some(implicit) = self.settings.integrator.implicit() {
-                saturated |= P::Scalar::FIXED_POINT && !external.iter().all(|f| f.is_finite());
                 self.implicit_step(h, &external, implicit);
             } else {
-                let (f, _) = self.forces(&self.strains(&self.pos, &self.vel), &external);
-                saturated |= P::Scalar::FIXED_POINT && !f.iter().all(|f| f.is_finite());
-                let mut a = self.free(f);
-                solve(&self.chol, &mut a);
+                // In impulses, velocity changes by the mass unit: in `Q16` the format holds
+                // accelerations hundreds of times its range (a whipping end's).
+                let impulses = external.map(|f| f * h);
+                let st = self.strains(&self.pos, &self.vel);
+                let (j, _) = self.forces(&st, &impulses, h);
+                let mut dv = self.free(j);
+                solve(&self.chol, &mut dv);
+                saturated |= P::Scalar::FIXED_POINT && !(fits(&j) && fits(&dv));
+                let slowed = drag * h;
                 for i in 0..K {
                     if !self.pinned[i] {
-                        self.vel[i] += (a[i] - self.vel[i] * drag) * h;
+                        self.vel[i] += dv[i] - self.vel[i] * slowed;
                         self.pos[i] += self.vel[i] * h;
                     }
                 }
@@ -1590,7 +1647,7 @@ struct Linearized<P: Point, const K: usize> {
 ///   step, and a rope released level loses 31% to 43% of the fall's energy in the first
 ///   second at 60 Hz. Range (`tests/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵`
 ///   (`ds` a span, `ρ` the mass per length; a 10 m steel cable at 60 Hz is about 2·10³);
-///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.01 px from `f64`
+///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.02 px from `f64`
 ///   after 2 s). On a soft rope it costs several explicit frames
 ///   (`cargo bench --bench physics -- spline_rope`); the explicit cost grows with `√EA`,
 ///   this one does not. No damping floor is needed.
@@ -2274,7 +2331,7 @@ mod tests {
             }
             let zero_v = [Vec2::default(); 8];
             let st = r.strains(&r.pos, &zero_v);
-            let (_, t) = r.forces(&st, &r.external(&Default::default()));
+            let (_, t) = r.forces(&st, &r.external(&Default::default()), 1.0);
             let mut lin = r.linearized(&st, &t, 1.0, true);
             lin.damping = 0.0;
             let u: [Vec2<f64>; 8] =
@@ -2283,8 +2340,12 @@ mod tests {
             let eps = 1e-7;
             let at = |sign: f64| {
                 let x: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + u[i] * (sign * eps));
-                r.forces(&r.strains(&x, &zero_v), &r.external(&Default::default()))
-                    .0
+                r.forces(
+                    &r.strains(&x, &zero_v),
+                    &r.external(&Default::default()),
+                    1.0,
+                )
+                .0
             };
             let (plus, minus) = (at(1.0), at(-1.0));
             let w: [Vec2<f64>; 8] =
@@ -2331,7 +2392,7 @@ mod tests {
         }
         let zero_v = [Vec2::default(); 8];
         let st = r.strains(&r.pos, &zero_v);
-        let (_, t) = r.forces(&st, &r.external(&Default::default()));
+        let (_, t) = r.forces(&st, &r.external(&Default::default()), 1.0);
         for h in [1e-3, 1.0 / 60.0, 1.0] {
             let mut lin = r.linearized(&st, &t, h, true);
             assert!(lin.uniform);
@@ -2384,7 +2445,11 @@ mod tests {
             );
         }
         let f = r
-            .forces(&r.strains(&r.pos, &r.vel), &r.external(&Default::default()))
+            .forces(
+                &r.strains(&r.pos, &r.vel),
+                &r.external(&Default::default()),
+                1.0,
+            )
             .0;
         let h = 1e-6;
         for i in 0..8 {
@@ -2398,7 +2463,7 @@ mod tests {
                 q.set_coord(axis, q.coord(axis) - h);
                 minus.pos[i] = q;
                 let grad = (plus.energy() - minus.energy()) / (2.0 * h);
-                let force = f[i].coord(axis);
+                let force = f[i].coord(axis) * r.unit;
                 assert!(
                     (force + grad).abs() < 1e-4 * (1.0 + force.abs()),
                     "{i} {axis}: force {force} grad {grad}"
@@ -2432,6 +2497,7 @@ mod tests {
                 r.forces(
                     &r.strains(&r.pos, &r.vel),
                     &r.external(&[Vec2::default(); K]),
+                    1.0,
                 )
                 .0
             };
@@ -2517,6 +2583,7 @@ mod tests {
                 .forces(
                     &r.strains(&r.pos, &zero_v),
                     &r.external(&Default::default()),
+                    1.0,
                 )
                 .0;
             let mut x: [Vec2<f64>; 8] = core::array::from_fn(|i| {
@@ -2534,6 +2601,7 @@ mod tests {
                     .forces(
                         &r.strains(&moved, &zero_v),
                         &r.external(&Default::default()),
+                        1.0,
                     )
                     .0;
                 let mut y: [Vec2<f64>; 8] = core::array::from_fn(|i| (f0[i] - f1[i]) * (1.0 / h));
