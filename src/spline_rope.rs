@@ -363,8 +363,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 self.chol[i][d] = P::Scalar::from_f64(chol[i][d]);
             }
         }
-        // The stretch's stiffness on the straight rope over `m̄`, `EA·Bᵀ W Π B / m̄`: the strain of a
-        // displacement along the rope, projected, back through the slopes; and the bending.
+        // The stretch's stiffness on the straight rope over `m̄`, `EA·Bᵀ W Π B / m̄`: the
+        // strain of a displacement along the rope, projected, back through the slopes; and
+        // the bending.
         // From the tables the steps use (the bound is the stepped operator's), read in `f64`
         // where they are used ([`Wide`]): a copy of them would cost a microcontroller's stack
         // 2 KB.
@@ -529,7 +530,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative or non-finite `ei`; [`Error::TooStiff`]
-    /// when the bound is beyond the format. Nothing changes on an error.
+    /// when the bound, or the bending's band over the mass unit (`EI / m̄` times entries
+    /// up to `36 / ds³`), is beyond the format. Nothing changes on an error.
     pub fn set_bending(&mut self, ei: P::Scalar) -> Result<(), Error> {
         check_non_negative(ei)?;
         let before = (self.bending, self.bend);

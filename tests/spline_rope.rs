@@ -401,6 +401,27 @@ fn bad_input_is_an_error() {
         faint(Q16::ratio(1, 16)).map(drop),
         Err(Error::InvalidParameter)
     );
+    // A bending band past the format over the mass unit: a 70 px rope of 0.07 mass units
+    // and 16 control points at `EI = 2000` has entries up to `24 / ds³ · EI / m̄`, 57 000.
+    let stretch = Material {
+        stiffness: Q16::from_i16(3),
+        damping: Q16::ZERO,
+    };
+    let mut light = SplineRope::<Vec2<Q16>, 16>::new(
+        start,
+        end,
+        Q16::ratio(7, 100),
+        stretch,
+        Settings::default(),
+    )
+    .unwrap();
+    let bound = light.stiffness_bound();
+    assert_eq!(light.set_bending(Q16::from_i16(2000)), Err(Error::TooStiff));
+    assert_eq!(
+        (light.bending(), light.stiffness_bound()),
+        (Q16::ZERO, bound)
+    );
+    assert_eq!(light.set_bending(Q16::from_i16(10)), Ok(()));
     // With a stiffness the unit is `EA / 2¹⁴`: such a rope is refused or steps, no panic.
     if let Ok(mut rope) = faint(Q16::from_i16(3000)) {
         for _ in 0..10 {
