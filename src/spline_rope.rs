@@ -541,11 +541,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.bend =
             curvature_band::<K>(ds).map(|row| row.map(|c| P::Scalar::from_f64(c * per_mass)));
         let fits = self.bend.iter().flatten().all(|b| b.is_finite());
-        if let Err(e) = if fits {
+        let planned = if fits {
             self.refactor()
         } else {
             Err(Error::TooStiff)
-        } {
+        };
+        if let Err(e) = planned {
             (self.bending, self.bend) = before;
             self.refactor()?;
             return Err(e);
@@ -634,6 +635,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// curve is `Σ w_k p_(first + k)`; a force `f` there acts on those control points as
     /// `w_k f` (`Jᵀ f`).
     pub fn weights_at(&self, s: P::Scalar) -> (usize, [P::Scalar; 4]) {
+        let (first, w) = self.basis_at(s);
+        (first, w.map(P::Scalar::from_f64))
+    }
+
+    /// [`weights_at`](Self::weights_at) in `f64`.
+    fn basis_at(&self, s: P::Scalar) -> (usize, [f64; 4]) {
         let spans = (K - 3) as f64;
         let along = s.to_f64() / self.length.to_f64();
         // NaN counts as the start.
@@ -642,8 +649,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         } else {
             0.0
         };
-        let first = (u as usize).min(K - 4);
-        (first, basis(u, K).0.map(P::Scalar::from_f64))
+        ((u as usize).min(K - 4), basis(u, K).0)
     }
 
     /// Applies force `f` at material coordinate `s` during the next step (a hit, a pull,
@@ -657,10 +663,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         if !s.is_finite() {
             return Err(Error::InvalidParameter);
         }
-        let (first, w) = self.weights_at(s);
-        let per_mass = P::Scalar::ONE / self.unit;
+        // The weights over the mass unit, in `f64`: no division in the format.
+        let (first, w) = self.basis_at(s);
+        let unit = self.unit.to_f64();
         for (k, &wk) in w.iter().enumerate() {
-            self.extra[first + k] += f * wk * per_mass;
+            self.extra[first + k] += f * P::Scalar::from_f64(wk / unit);
         }
         Ok(())
     }
@@ -1583,7 +1590,7 @@ struct Strains<P: Point, const K: usize> {
     taut: bool,
 }
 
-/// The tension at a rope's stretch points (force units) and whether every span is taut.
+/// The tension over the mass unit at a rope's stretch points and whether every span is taut.
 struct Tensions<S, const K: usize> {
     tension: [[S; 3]; K],
     taut: bool,
