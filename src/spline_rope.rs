@@ -190,9 +190,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     gamma: P::Scalar,
     /// Substeps per unit of `rate·dt` at the accuracy (0 for an implicit stepper).
     per_rate: P::Scalar,
-    /// The last implicit step's start and length, for [`Bdf2`]; `None` after a change
-    /// from outside.
-    history: Option<([P; K], [P; K], P::Scalar)>,
+    /// The last implicit step, for [`Bdf2`]; `None` after a change from outside.
+    history: Option<History<P, K>>,
     /// Generalized forces over `m̄` applied for the next step
     /// ([`apply_force`](Self::apply_force)).
     extra: [P; K],
@@ -869,7 +868,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The new velocities `w` of one backward Euler step of `h` from `x0`, `v0` with the
-    /// generalized forces `external` held (see [`external`](Self::external)): they minimize the step's incremental potential
+    /// generalized forces `external` held (see [`external`](Self::external)), the strains at
+    /// the new positions `x₀ + h·w` and the elastic potential at `x0`: `w` minimizes the
+    /// step's incremental potential
     /// `½|w − v₀|²_M + ½|w|²_D + V(x₀ + h·w) − fᵀ(x₀ + h·w)`, `D = h·(γ·M + C₀)` (air drag,
     /// and the strain damping linearized at the start), `V` the stretch and bending energy
     /// and `f` the external forces; the positions are `x₀ + h·w`. Newton
@@ -883,7 +884,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         h: P::Scalar,
         external: &[P; K],
         iterations: u8,
-    ) -> [P; K] {
+    ) -> ([P; K], Strains<P, K>, P::Scalar) {
         let zero = P::Scalar::ZERO;
         let (x0, v0) = (*x0, *v0);
         let still = [P::default(); K];
@@ -919,7 +920,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 // `Q16` cannot resolve the potential's changes: one Newton step, taken
                 // whole (linearized backward Euler).
                 w = core::array::from_fn(|i| w[i] + step[i]);
-                break;
+                return (w, self.strains(&at(&w), &still), zero);
             }
             // `−slope` is the Newton decrement: what a full step promises the potential.
             let mut slope = dot(&step, &gradient);
@@ -962,7 +963,57 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 break;
             }
         }
-        w
+        (w, st, self.elastic_potential(&start))
+    }
+
+    /// A backward Euler step from `x0`, `v0` (elastic potential `potential`) to velocities
+    /// `w` (strains `st` at `x0 + h·w`), kept from gaining energy: `½vᵀMv + V(x) − fᵀx`
+    /// with the forces `f` held, which an exact step on a convex `V` never raises (the
+    /// strain's projection makes `V` not quite convex, and the Newton steps may stop short).
+    /// If `w` raises it, the velocities are scaled down until it does not; if the positions
+    /// alone raise it, the step is halved until they do not ([`HELD_ENERGY_HALVINGS`] at
+    /// most, then not taken: the rope stays where it was, still). A strain evaluation a
+    /// halving.
+    fn held_energy(
+        &self,
+        (x0, v0, potential): (&[P; K], &[P; K], P::Scalar),
+        (w, st): (&[P; K], &Strains<P, K>),
+        h: P::Scalar,
+        external: &[P; K],
+    ) -> ([P; K], [P; K]) {
+        let zero = P::Scalar::ZERO;
+        let half = P::Scalar::ratio(1, 2);
+        let kinetic = self.kinetic(v0);
+        let work = (0..K).fold(zero, |sum, i| sum + external[i].dot(w[i])) * h;
+        // The full step's kinetic energy.
+        let moving = self.kinetic(w);
+        let (mut alpha, mut halvings) = (P::Scalar::ONE, 0);
+        loop {
+            let x: [P; K] = core::array::from_fn(|i| x0[i] + w[i] * (h * alpha));
+            let elastic = if halvings == 0 {
+                self.elastic_potential(st)
+            } else {
+                self.elastic_potential(&self.strains(&x, &[P::default(); K]))
+            };
+            // The kinetic energy the step may end with: the start's, less what the
+            // positions gained (none where they did not move).
+            let allowed = kinetic - (elastic - potential - work * alpha);
+            if allowed >= zero || alpha == zero {
+                let kept = moving * alpha * alpha;
+                let scale = if kept > allowed && kept > zero {
+                    (allowed.max(zero) / kept).sqrt() * alpha
+                } else {
+                    alpha
+                };
+                return (x, w.map(|wi| wi * scale));
+            }
+            halvings += 1;
+            alpha = if halvings < HELD_ENERGY_HALVINGS {
+                alpha * half
+            } else {
+                zero
+            };
+        }
     }
 
     /// Whether `h²·ω²·ε ≤ 2⁻¹⁰` (`ε` the format's epsilon; in `f32`, `h²·ω² ≤ 8·10³`): where
@@ -987,7 +1038,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// [`bdf2_holds`](Self::bdf2_holds) (else backward Euler). BDF2 is a
     /// [`backward_euler`](Self::backward_euler) solve of `⅔·h`
     /// from `(4·x₀ − x₋₁)/3` and `(4·v₀ − v₋₁)/3`: the same cost, second order, and it still
-    /// damps what a step cannot resolve.
+    /// damps what a step cannot resolve. In `f32` and `f64` a backward Euler step never
+    /// gains energy ([`held_energy`](Self::held_energy)), and a BDF2 step that would end
+    /// with more than the last backward Euler step left is taken as backward Euler's.
     fn implicit_step(
         &mut self,
         h: P::Scalar,
@@ -998,23 +1051,83 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let along = |x: &[P; K], v: &[P; K], h: P::Scalar| -> [P; K] {
             core::array::from_fn(|i| x[i] + v[i] * h)
         };
-        let (x, w) = match self.history {
-            Some((xp, vp, hp)) if second_order && hp == h && self.bdf2_holds(h) => {
-                let step = h * P::Scalar::ratio(2, 3);
-                let third = P::Scalar::ratio(1, 3);
-                let four = P::Scalar::from_i16(4);
-                let xs: [P; K] = core::array::from_fn(|i| (x0[i] * four - xp[i]) * third);
-                let vs: [P; K] = core::array::from_fn(|i| (v0[i] * four - vp[i]) * third);
-                let w = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
-                (along(&xs, &w, step), w)
+        let still = [P::default(); K];
+        if P::Scalar::FIXED_POINT {
+            // `Q16` cannot resolve the energy: the linearized step as it is.
+            let (w, _, _) = self.backward_euler((&x0, &v0), h, external, iterations);
+            return self.take_implicit((&along(&x0, &w, h), &w), (x0, v0, h), P::Scalar::ZERO);
+        }
+        if let Some(History {
+            start: xp,
+            velocities: vp,
+            h: hp,
+            headroom,
+        }) = self.history
+            && second_order
+            && hp == h
+            && self.bdf2_holds(h)
+        {
+            let step = h * P::Scalar::ratio(2, 3);
+            let third = P::Scalar::ratio(1, 3);
+            let four = P::Scalar::from_i16(4);
+            let xs: [P; K] = core::array::from_fn(|i| (x0[i] * four - xp[i]) * third);
+            let vs: [P; K] = core::array::from_fn(|i| (v0[i] * four - vp[i]) * third);
+            let (w, st, _) = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
+            let x = along(&xs, &w, step);
+            let potential = self.elastic_potential(&self.strains(&x0, &still));
+            // BDF2's energy may rise in a step (a percent or so of the motion's), but not
+            // past where the last backward Euler step left it: a step that would is taken
+            // as backward Euler's, held.
+            let gained = self.gained((&x0, &v0, potential), (&x, &w, &st), external);
+            if gained <= headroom {
+                return self.take_implicit((&x, &w), (x0, v0, h), headroom - gained);
             }
-            _ => {
-                let w = self.backward_euler((&x0, &v0), h, external, iterations);
-                (along(&x0, &w, h), w)
-            }
-        };
-        if second_order {
-            self.history = Some((x0, v0, h));
+        }
+        let (w, st, potential) = self.backward_euler((&x0, &v0), h, external, iterations);
+        let (x, w) = self.held_energy((&x0, &v0, potential), (&w, &st), h, external);
+        self.take_implicit((&x, &w), (x0, v0, h), P::Scalar::ZERO);
+    }
+
+    /// What a step from `x0`, `v0` (elastic potential `potential`) to `x`, `w` (strains
+    /// `st`) added to `½vᵀMv + V(x) − fᵀx` with the forces `f` held (over `m̄`).
+    fn gained(
+        &self,
+        (x0, v0, potential): (&[P; K], &[P; K], P::Scalar),
+        (x, w, st): (&[P; K], &[P; K], &Strains<P, K>),
+        external: &[P; K],
+    ) -> P::Scalar {
+        let work = (0..K).fold(P::Scalar::ZERO, |sum, i| {
+            sum + external[i].dot(x[i] - x0[i])
+        });
+        self.kinetic(w) - self.kinetic(v0) + self.elastic_potential(st) - potential - work
+    }
+
+    /// `½vᵀMv / m̄`.
+    fn kinetic(&self, v: &[P; K]) -> P::Scalar {
+        let mv = self.mass_times(v);
+        (0..K).fold(P::Scalar::ZERO, |sum, i| sum + v[i].dot(mv[i])) * P::Scalar::ratio(1, 2)
+    }
+
+    /// Ends an implicit step at `x`, `w` (pinned points kept), remembering its start and
+    /// the energy's `headroom` for [`Bdf2`].
+    fn take_implicit(
+        &mut self,
+        (x, w): (&[P; K], &[P; K]),
+        (x0, v0, h): ([P; K], [P; K], P::Scalar),
+        headroom: P::Scalar,
+    ) {
+        if self
+            .settings
+            .integrator
+            .implicit()
+            .is_some_and(|(_, second)| second)
+        {
+            self.history = Some(History {
+                start: x0,
+                velocities: v0,
+                h,
+                headroom,
+            });
         }
         for i in 0..K {
             if !self.pinned[i] {
@@ -1613,6 +1726,18 @@ struct StretchSolve<P: Point, const K: usize> {
     factor: [[P::Scalar; K]; K],
 }
 
+/// The last implicit step of a [`SplineRope`], for [`Bdf2`].
+#[derive(Clone, Copy, Debug)]
+struct History<P: Point, const K: usize> {
+    /// Its start's positions and velocities, and its length.
+    start: [P; K],
+    velocities: [P; K],
+    h: P::Scalar,
+    /// How far its end's energy is below where the last backward Euler step left it (over
+    /// `m̄`): what a BDF2 step may still gain (see `SplineRope::implicit_step`).
+    headroom: P::Scalar,
+}
+
 /// A backward Euler step's stiffness at a rope's stretch points: see
 /// [`SplineRope::linearized`].
 struct Linearized<P: Point, const K: usize> {
@@ -1648,12 +1773,14 @@ struct Linearized<P: Point, const K: usize> {
 ///   substeps past that, so a stiff rope in `Q16` costs about an eighth of the explicit
 ///   substeps, each several times dearer). Its
 ///   fixed point is the equilibrium: 8 control points sag within 0.12% of the catenary at
-///   `EA = 10⁸ N` on 1.2 kg. It does not gain energy (tested from `EA = 2·10³` to `10⁸ N`
-///   on 1 m, 1 kg, and under strain damping hundreds of times critical; the exception
-///   measured: 16 control points under such damping on a rope its own weight stretches by
-///   a tenth or more, where the slack spans' 4 Newton steps stop short), and damps what a frame cannot
+///   `EA = 10⁸ N` on 1.2 kg. In `f32` and `f64` a step never gains energy
+///   (`½vᵀMv + V − fᵀx` with the step's forces held): where the Newton steps stop short (a
+///   rope stretched far past its length, damped hundreds of times past critical, or stepped
+///   far slower than it swings) and the step would gain, its velocities are scaled down,
+///   or the step is shortened (at most 8 halvings, then not taken), until it does not; such
+///   a rope moves slower than it should instead of blowing up. It damps what a frame cannot
 ///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
-///   step, and a rope released level loses 31% to 43% of the fall's energy in the first
+///   step, and a rope released level loses 37% to 43% of the fall's energy in the first
 ///   second at 60 Hz. Range (`tests/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵`
 ///   (`ds` a span, `ρ` the mass per length; a 10 m steel cable at 60 Hz is about 2·10³);
 ///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.02 px from `f64`
@@ -1662,8 +1789,10 @@ struct Linearized<P: Point, const K: usize> {
 ///   this one does not. No damping floor is needed.
 /// - [`Bdf2`]: the same solve on BDF2's shifted start, second order: a rope released level
 ///   loses 6% to 8% of the fall's energy in its first second (`EA` from 2·10³ to 10⁷ N on
-///   1 m, 1 kg, `f64`), and never gains. Past the stiffness it was tested at, and in
-///   `Q16`, it takes backward Euler steps.
+///   1 m, 1 kg, `f64`). Its energy may rise in a step, but in `f32` and `f64` never above
+///   where the last backward Euler step left it: a step that would end higher is taken as
+///   backward Euler's. Past the stiffness it was tested at, and in `Q16`, it takes
+///   backward Euler steps.
 ///
 /// Sealed: the three above are all.
 pub trait SplineStepper: Copy + core::fmt::Debug + PartialEq + sealed::Sealed {
@@ -1698,7 +1827,8 @@ impl SplineStepper for ImplicitEuler {
 /// of another length, or a change to the state from outside (positions, velocities, pins),
 /// starts it again with one backward Euler step. Past the stiffness it was tested to hold
 /// its energy at (`h²·ω²` past `2²²`, or past `8·10³` in `f32`: a very stiff rope), and in
-/// `Q16`, it takes backward Euler steps. The strain's projection leaves the length free to wiggle between its
+/// `Q16`, it takes backward Euler steps; and in `f32` and `f64` where its step would end
+/// with more energy than the last backward Euler step left. The strain's projection leaves the length free to wiggle between its
 /// quadratic-spline averages; BDF2, damping less, lets a stiff rope's drawn length pass its
 /// rest length by up to 0.7% (backward Euler: 0.04%).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1739,6 +1869,10 @@ fn converged<S: Scalar>() -> S {
 /// Most halvings of a Newton step (to `2⁻³¹` of it) before the implicit stepper keeps what
 /// it has.
 const LINE_SEARCH: usize = 32;
+
+/// Halvings of an unsolved implicit step whose positions gained energy, to `2⁻⁷` of it,
+/// before it is not taken at all (see `SplineRope::held_energy`).
+const HELD_ENERGY_HALVINGS: usize = 8;
 
 /// Below `1 - SLACK` of its rest length a span of rope is slack: `(1, 10)`.
 const SLACK: (u32, u32) = (1, 10);
