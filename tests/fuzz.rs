@@ -2,15 +2,17 @@
 //! steppers), with hostile values (NaN, ±∞, 0, huge, negative, `usize::MAX`, empty and tiny
 //! buffers), in `f32`, `f64` and `Q16`. After every call: nothing panicked, every position
 //! and velocity is finite and in range, and a call that returned an error left the rope
-//! exactly as it was. And spline ropes built from random lengths, masses, stiffnesses,
-//! dampings and gravities, stepped at random frame lengths: the same, and their energy
-//! bounded.
+//! exactly as it was. And ropes and spline ropes built from random lengths, masses,
+//! stiffnesses, dampings and gravities, stepped at random frame lengths: the same, and the
+//! spline ropes' energy bounded.
 #![cfg(all(feature = "std", feature = "fixed"))]
 
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::force::{AnchorSpring, Wind};
-use dunas::integrator::{ImplicitEuler, SymplecticEuler};
+use dunas::integrator::{
+    ExplicitEuler, ImplicitEuler, Integrator, Rk4, SymplecticEuler, Verlet, Xpbd,
+};
 use dunas::prelude::*;
 use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 use proptest::prelude::*;
@@ -417,31 +419,68 @@ fn build() -> impl Strategy<Value = Build> {
         )
 }
 
-/// Builds the rope (a refusal is fine) and steps it: a refused step changes nothing, every
-/// position and velocity stays in range, and in `f32` and `f64` the energy never rises
-/// above the start's with an implicit stepper (its documented guard; `f32` within 10⁻⁴ of
-/// the fall's energy, and both within their rounding), nor past 10 times the fall's energy explicitly
-/// (symplectic Euler's energy is bounded, not conserved: near its stability limit it swings
-/// by several times the motion's).
-fn built_holds_up<S: Scalar, I: SplineStepper, const K: usize>(stepper: I, b: &Build) {
-    let s = S::from_f64;
-    let settings = Settings {
-        gravity: Vec2::new(
-            s(b.gravity * b.gravity_angle.cos()),
-            s(b.gravity * b.gravity_angle.sin()),
-        ),
-        damping: s(b.drag),
-        accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][b.accuracy as usize],
-        ..Settings::default()
+impl Build {
+    /// The settings, material and free end in the format (the start is the origin).
+    fn parts<S: Scalar, I>(&self, integrator: I) -> (Settings<Vec2<S>, I>, Material<S>, Vec2<S>) {
+        let s = S::from_f64;
+        let settings = Settings {
+            gravity: Vec2::new(
+                s(self.gravity * self.gravity_angle.cos()),
+                s(self.gravity * self.gravity_angle.sin()),
+            ),
+            damping: s(self.drag),
+            accuracy: [Accuracy::Fast, Accuracy::Balanced, Accuracy::Fine][self.accuracy as usize],
+            ..Settings::default()
+        }
+        .with_integrator(integrator);
+        let material = Material {
+            stiffness: s(self.stiffness),
+            damping: s(self.damping),
+        };
+        let end = Vec2::new(
+            s(self.length * self.angle.cos()),
+            s(self.length * self.angle.sin()),
+        );
+        (settings, material, end)
     }
-    .with_integrator(stepper);
-    let material = Material {
-        stiffness: s(b.stiffness),
-        damping: s(b.damping),
-    };
-    let end = Vec2::new(s(b.length * b.angle.cos()), s(b.length * b.angle.sin()));
+
+    /// Steps `rope` its frames: a refused step changes nothing, every position and
+    /// velocity stays in range, and `check` holds after each frame.
+    fn steps<R: std::fmt::Debug, S: Scalar>(
+        &self,
+        rope: &mut R,
+        step: impl Fn(&mut R, S) -> Result<(), Error>,
+        state: impl Fn(&R) -> Vec<Vec2<S>>,
+        check: impl Fn(&R, usize),
+    ) {
+        for frame in 0..self.frames {
+            let before = format!("{rope:?}");
+            if let Err(e) = step(rope, S::from_f64(self.dt)) {
+                assert_eq!(
+                    before,
+                    format!("{rope:?}"),
+                    "frame {frame}: refused ({e:?}) but changed"
+                );
+            }
+            for p in state(rope) {
+                assert!(p.in_safe_range(), "frame {frame}: {p:?}");
+            }
+            check(rope, frame);
+        }
+    }
+}
+
+/// Builds the spline rope (a refusal is fine) and steps it as [`Build::steps`] does; in
+/// `f32` and `f64` its energy never rises above the start's with an implicit stepper (its
+/// documented guard; `f32` within 10⁻⁴ of the fall's energy, and both within their
+/// rounding), nor past 1000 times the fall's energy explicitly (symplectic Euler's energy
+/// is bounded, not conserved: near its stability limit it swings by several times the
+/// motion's; past 1000 times it would be blowing up).
+fn built_holds_up<S: Scalar, I: SplineStepper, const K: usize>(stepper: I, b: &Build) {
+    let (settings, material, end) = b.parts::<S, I>(stepper);
     let origin = Vec2::new(S::ZERO, S::ZERO);
-    let Ok(mut rope) = SplineRope::<Vec2<S>, K, I>::new(origin, end, s(b.mass), material, settings)
+    let mass = S::from_f64(b.mass);
+    let Ok(mut rope) = SplineRope::<Vec2<S>, K, I>::new(origin, end, mass, material, settings)
     else {
         return;
     };
@@ -450,40 +489,57 @@ fn built_holds_up<S: Scalar, I: SplineStepper, const K: usize>(stepper: I, b: &B
     }
     // The fall's energy: the rope's weight over its length and what its weight stretches it.
     let fall = b.mass * b.gravity * b.length * (1.0 + b.mass * b.gravity / b.stiffness);
-    let bound = if stepper.implicit().is_some() {
-        if S::EPSILON.to_f64() > 1e-10 {
-            1e-4
-        } else {
-            1e-9
-        }
-    } else {
-        10.0
+    let bound = match stepper.implicit() {
+        Some(_) if S::EPSILON.to_f64() > 1e-10 => 1e-4,
+        Some(_) => 1e-9,
+        None => 1e3,
     };
     let e0 = rope.energy().to_f64();
     // The energy's own rounding: ten of the format's epsilons on the start's energy and on
     // the stretch's scale `EA·L` (a still, straight rope's rounding stretches it).
     let rounding = 10.0 * S::EPSILON.to_f64() * (e0.abs() + b.stiffness * b.length);
-    for frame in 0..b.frames {
-        let before = format!("{rope:?}");
-        if let Err(e) = rope.step(s(b.dt)) {
-            assert_eq!(
-                before,
-                format!("{rope:?}"),
-                "frame {frame}: refused ({e:?}) but changed"
+    b.steps(
+        &mut rope,
+        |rope, dt| rope.step(dt).map(drop),
+        |rope| [&rope.positions()[..], &rope.velocities()[..]].concat(),
+        |rope, frame| {
+            let gained = rope.energy().to_f64() - e0;
+            assert!(
+                S::FIXED_POINT || gained <= bound * fall + rounding,
+                "{stepper:?}, {K} control points, frame {frame}: gained {gained:e} (the fall {fall:e})"
             );
-        }
-        for p in rope.positions().iter().chain(rope.velocities()) {
-            assert!(p.in_safe_range(), "frame {frame}: {p:?}");
-        }
-        let gained = rope.energy().to_f64() - e0;
-        assert!(
-            S::FIXED_POINT || gained <= bound * fall + rounding,
-            "{stepper:?}, {K} control points, frame {frame}: gained {gained:e} (the fall {fall:e})"
-        );
+        },
+    );
+}
+
+/// Builds the particle rope (a refusal is fine) and steps it as [`Build::steps`] does.
+fn built_rope_holds_up<S: Scalar, I: Integrator, const N: usize>(integrator: I, b: &Build) {
+    let (settings, material, end) = b.parts::<S, I>(integrator);
+    let origin = Vec2::new(S::ZERO, S::ZERO);
+    let mass = S::from_f64(b.mass);
+    let Ok(mut rope) = Rope::<Vec2<S>, N, N, I>::new(origin, end, mass, material, settings) else {
+        return;
+    };
+    if b.both_ends_pinned {
+        rope.set_inv_mass(N - 1, S::ZERO).unwrap();
     }
+    b.steps(
+        &mut rope,
+        |rope, dt| rope.step(dt).map(drop),
+        |rope| [rope.positions(), rope.velocities()].concat(),
+        |_, _| {},
+    );
 }
 
 fn builds_hold_up<S: Scalar>(b: &Build) {
+    built_rope_holds_up::<S, _, 2>(SymplecticEuler, b);
+    built_rope_holds_up::<S, _, 8>(SymplecticEuler, b);
+    built_rope_holds_up::<S, _, 30>(SymplecticEuler, b);
+    built_rope_holds_up::<S, _, 8>(ExplicitEuler, b);
+    built_rope_holds_up::<S, _, 8>(Verlet, b);
+    built_rope_holds_up::<S, _, 8>(Rk4, b);
+    built_rope_holds_up::<S, _, 8>(ImplicitEuler::default(), b);
+    built_rope_holds_up::<S, _, 8>(Xpbd::default(), b);
     built_holds_up::<S, _, 4>(SymplecticEuler, b);
     built_holds_up::<S, _, 5>(SymplecticEuler, b);
     built_holds_up::<S, _, 8>(SymplecticEuler, b);
@@ -497,17 +553,17 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
     #[test]
-    fn f32_spline_ropes_of_any_build_hold_up(b in build()) {
+    fn f32_ropes_of_any_build_hold_up(b in build()) {
         builds_hold_up::<f32>(&b);
     }
 
     #[test]
-    fn f64_spline_ropes_of_any_build_hold_up(b in build()) {
+    fn f64_ropes_of_any_build_hold_up(b in build()) {
         builds_hold_up::<f64>(&b);
     }
 
     #[test]
-    fn q16_spline_ropes_of_any_build_hold_up(b in build()) {
+    fn q16_ropes_of_any_build_hold_up(b in build()) {
         builds_hold_up::<Q16>(&b);
     }
 }

@@ -9,9 +9,14 @@ use crate::{Point, Scalar};
 /// Backward Euler linearised once per substep (Baraff–Witkin) and solved by conjugate
 /// gradient with at most `iterations` steps. Stable at any step; damps what it cannot
 /// resolve. Cost per CG iteration: one spring Jacobian product (a square root per spring).
+///
+/// Its one linearization does not follow a very stiff spring as it turns: a 1 m, 1 kg rope
+/// of 8 particles released level at 60 Hz never rises above its starting energy up to
+/// `k = 10⁶ N/m`, but at `10⁷` its energy rises for a while to 3 times what the fall
+/// releases (at `10⁸`, 14 times) before the step's damping settles it (`tests/physics.rs`).
 /// A [`SplineRope`](crate::spline_rope::SplineRope) solves its step fully instead (Newton's
-/// method, `iterations` per Newton step): see
-/// [`SplineStepper`](crate::spline_rope::SplineStepper).
+/// method, `iterations` per Newton step) and, in `f32` and `f64`, never gains energy: for
+/// stiff cables, see [`SplineStepper`](crate::spline_rope::SplineStepper).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ImplicitEuler {
     /// Conjugate-gradient iteration budget (8 to 32 is typical).
