@@ -868,9 +868,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The new velocities `w` of one backward Euler step of `h` from `x0`, `v0` with the
-    /// generalized forces `external` held (see [`external`](Self::external)), the strains at
-    /// the new positions `x₀ + h·w` and the elastic potential at `x0`: `w` minimizes the
-    /// step's incremental potential
+    /// generalized forces `external` held (see [`external`](Self::external)), with what the
+    /// energy guard needs (the strains at the new positions `x₀ + h·w` and the elastic
+    /// potential at `x0`; `None` in `Q16`, which has no guard): `w` minimizes the step's
+    /// incremental potential
     /// `½|w − v₀|²_M + ½|w|²_D + V(x₀ + h·w) − fᵀ(x₀ + h·w)`, `D = h·(γ·M + C₀)` (air drag,
     /// and the strain damping linearized at the start), `V` the stretch and bending energy
     /// and `f` the external forces; the positions are `x₀ + h·w`. Newton
@@ -884,7 +885,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         h: P::Scalar,
         external: &[P; K],
         iterations: u8,
-    ) -> ([P; K], Strains<P, K>, P::Scalar) {
+    ) -> ([P; K], Option<Ends<P, K>>) {
         let zero = P::Scalar::ZERO;
         let (x0, v0) = (*x0, *v0);
         let still = [P::default(); K];
@@ -920,7 +921,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 // `Q16` cannot resolve the potential's changes: one Newton step, taken
                 // whole (linearized backward Euler).
                 w = core::array::from_fn(|i| w[i] + step[i]);
-                return (w, self.strains(&at(&w), &still), zero);
+                return (w, None);
             }
             // `−slope` is the Newton decrement: what a full step promises the potential.
             let mut slope = dot(&step, &gradient);
@@ -963,7 +964,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 break;
             }
         }
-        (w, st, self.elastic_potential(&start))
+        let potential = self.elastic_potential(&start);
+        (w, Some(Ends { st, potential }))
     }
 
     /// A backward Euler step from `x0`, `v0` (elastic potential `potential`) to velocities
@@ -1054,7 +1056,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let still = [P::default(); K];
         if P::Scalar::FIXED_POINT {
             // `Q16` cannot resolve the energy: the linearized step as it is.
-            let (w, _, _) = self.backward_euler((&x0, &v0), h, external, iterations);
+            let (w, _) = self.backward_euler((&x0, &v0), h, external, iterations);
             return self.take_implicit((&along(&x0, &w, h), &w), (x0, v0, h), P::Scalar::ZERO);
         }
         if let Some(History {
@@ -1072,19 +1074,26 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let four = P::Scalar::from_i16(4);
             let xs: [P; K] = core::array::from_fn(|i| (x0[i] * four - xp[i]) * third);
             let vs: [P; K] = core::array::from_fn(|i| (v0[i] * four - vp[i]) * third);
-            let (w, st, _) = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
-            let x = along(&xs, &w, step);
-            let potential = self.elastic_potential(&self.strains(&x0, &still));
-            // BDF2's energy may rise in a step (a percent or so of the motion's), but not
-            // past where the last backward Euler step left it: a step that would is taken
-            // as backward Euler's, held.
-            let gained = self.gained((&x0, &v0, potential), (&x, &w, &st), external);
-            if gained <= headroom {
-                return self.take_implicit((&x, &w), (x0, v0, h), headroom - gained);
+            let (w, end) = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
+            if let Some(Ends { st, .. }) = end {
+                let x = along(&xs, &w, step);
+                let potential = self.elastic_potential(&self.strains(&x0, &still));
+                // BDF2's energy may rise in a step (a percent or so of the motion's), but
+                // not past where the last backward Euler step left it: a step that would is
+                // taken as backward Euler's, held.
+                let gained = self.gained((&x0, &v0, potential), (&x, &w, &st), external);
+                if gained <= headroom {
+                    return self.take_implicit((&x, &w), (x0, v0, h), headroom - gained);
+                }
             }
         }
-        let (w, st, potential) = self.backward_euler((&x0, &v0), h, external, iterations);
-        let (x, w) = self.held_energy((&x0, &v0, potential), (&w, &st), h, external);
+        let (w, end) = self.backward_euler((&x0, &v0), h, external, iterations);
+        let (x, w) = match end {
+            Some(Ends { st, potential }) => {
+                self.held_energy((&x0, &v0, potential), (&w, &st), h, external)
+            }
+            None => (along(&x0, &w, h), w),
+        };
         self.take_implicit((&x, &w), (x0, v0, h), P::Scalar::ZERO);
     }
 
@@ -1724,6 +1733,13 @@ struct StretchSolve<P: Point, const K: usize> {
     columns: [[P; K]; K],
     /// The Cholesky factor of `D + B M'⁻¹ Bᵀ` ([`dense_cholesky`]).
     factor: [[P::Scalar; K]; K],
+}
+
+/// What the energy guard needs of a backward Euler step: the strains at its end and the
+/// elastic potential at its start.
+struct Ends<P: Point, const K: usize> {
+    st: Strains<P, K>,
+    potential: P::Scalar,
 }
 
 /// The last implicit step of a [`SplineRope`], for [`Bdf2`].
