@@ -1010,7 +1010,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 return (x, w.map(|wi| wi * scale));
             }
             halvings += 1;
-            alpha = if halvings < HELD_ENERGY_HALVINGS {
+            alpha = if halvings <= HELD_ENERGY_HALVINGS {
                 alpha * half
             } else {
                 zero
@@ -1793,7 +1793,7 @@ struct Linearized<P: Point, const K: usize> {
 ///   (`½vᵀMv + V − fᵀx` with the step's forces held): where the Newton steps stop short (a
 ///   rope stretched far past its length, damped hundreds of times past critical, or stepped
 ///   far slower than it swings) and the step would gain, its velocities are scaled down,
-///   or the step is shortened (at most 8 halvings, then not taken), until it does not; such
+///   or the step is shortened (at most 7 halvings, then not taken), until it does not; such
 ///   a rope moves slower than it should instead of blowing up. It damps what a frame cannot
 ///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
 ///   step, and a rope released level loses 37% to 43% of the fall's energy in the first
@@ -1886,9 +1886,9 @@ fn converged<S: Scalar>() -> S {
 /// it has.
 const LINE_SEARCH: usize = 32;
 
-/// Halvings of an unsolved implicit step whose positions gained energy, to `2⁻⁷` of it,
-/// before it is not taken at all (see `SplineRope::held_energy`).
-const HELD_ENERGY_HALVINGS: usize = 8;
+/// Halvings of an implicit step whose positions gained energy, to `2⁻⁷` of it, before it
+/// is not taken at all (see `SplineRope::held_energy`).
+const HELD_ENERGY_HALVINGS: usize = 7;
 
 /// Below `1 - SLACK` of its rest length a span of rope is slack: `(1, 10)`.
 const SLACK: (u32, u32) = (1, 10);
