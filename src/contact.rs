@@ -52,6 +52,7 @@ use core::cell::Cell;
 use crate::collider::Collider;
 use crate::error::check_non_negative;
 use crate::smooth::{Smoothed, Smoothing};
+use crate::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
 
 /// Where contacts are tested.
@@ -107,7 +108,8 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// they gave the rope or cloth. Divided by a body's mass, it is the velocity change the
     /// body gets back. A step sets every entry (zero for a collider it did not touch, and all
     /// zero when it returns an error); entries past the last collider are left alone, and
-    /// colliders past the last entry are not reported.
+    /// colliders past the last entry are not reported. In `Q16` an impulse past the format's
+    /// range is clamped at its limit, and the step's [`StepInfo::saturated`] says so.
     ///
     /// ```
     /// use dunas::prelude::*;
@@ -141,6 +143,21 @@ impl<'a, P: Point> Contacts<'a, P> {
         for cell in self.impulses.iter().take(self.colliders.len()) {
             cell.set(P::default());
         }
+    }
+
+    /// Ends a step's report: all zero after a refused step, and a `Q16` impulse clamped at
+    /// the format's limit marks the step [`saturated`](StepInfo::saturated).
+    pub(crate) fn finish_report(
+        &self,
+        info: Result<StepInfo<P::Scalar>, Error>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let Ok(mut info) = info else {
+            self.clear_impulses();
+            return info;
+        };
+        let reported = self.impulses.iter().take(self.colliders.len());
+        info.saturated |= reported.map(Cell::get).any(|j| !j.is_finite());
+        Ok(info)
     }
 
     /// Adds the momentum `given` to a rope or cloth by collider `k` to its report.

@@ -139,6 +139,16 @@ pub(crate) fn check_non_negative<S: crate::Scalar>(x: S) -> Result<S, Error> {
     }
 }
 
+/// `Ok(w)` for an inverse mass: 0 (pinned), or `> 0` and finite with a mass `1 / w` the
+/// format holds (in `Q16`, below 21 846); else [`Error::InvalidParameter`].
+pub(crate) fn check_inv_mass<S: crate::Scalar>(w: S) -> Result<S, Error> {
+    if check_non_negative(w)? == S::ZERO || (S::ONE / w).is_finite() {
+        Ok(w)
+    } else {
+        Err(Error::InvalidParameter)
+    }
+}
+
 /// `Ok(index)` when `index < len`, else [`Error::IndexOutOfRange`].
 pub(crate) fn check_index(index: usize, len: usize) -> Result<usize, Error> {
     if index < len {

@@ -164,17 +164,30 @@ impl<S: Scalar> Vec3<S> {
 
     /// The unit vector in this direction, or `None` for a zero (or non-finite) vector.
     ///
-    /// Exact to the format's rounding: one norm and one division. In `Q16` the length is
-    /// taken with a 64-bit accumulator, so any vector inside the range normalizes.
+    /// One norm and one division, to the format's rounding for any other vector: one whose
+    /// largest coordinate is below ½ or from 256 up is first scaled by powers of two (exact
+    /// in floats, so their result is unchanged), since in `Q16` a tiny vector's length has
+    /// few significant bits and a long one's saturates, and in floats the inverse of a
+    /// subnormal length overflows.
     #[inline]
     pub fn normalize(self) -> Option<Self> {
-        let len = self.length();
-        if len > S::ZERO && len.is_finite() {
-            let inv = S::ONE / len;
-            Some(self * inv)
-        } else {
-            None
+        let largest = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if !(largest > S::ZERO && largest.is_finite()) {
+            return None;
         }
+        let (mut v, mut m) = (self, largest);
+        let (up, down) = (S::from_i16(256), S::ratio(1, 256));
+        while m >= up {
+            (v, m) = (v * down, m * down);
+        }
+        while m < down {
+            (v, m) = (v * up, m * up);
+        }
+        let (two, half) = (S::from_i16(2), S::ratio(1, 2));
+        while m < half {
+            (v, m) = (v * two, m * two);
+        }
+        Some(v * (S::ONE / v.length()))
     }
 }
 
@@ -282,6 +295,38 @@ mod tests {
         assert_eq!(x.cross(y).normalize(), Some(Vec3::new(0.0, 0.0, 1.0)));
         assert_eq!(Vec3::<f32>::default().normalize(), None);
         assert_eq!(Vec3::new(f32::NAN, 0.0, 0.0).normalize(), None);
+        // Subnormal and huge vectors, whose inverse length or length overflows unscaled.
+        for x in [1e-310f64, f64::MIN_POSITIVE, 1e300, f64::MAX] {
+            assert_eq!(
+                Vec3::new(0.0, -x, 0.0).normalize(),
+                Some(Vec3::new(0.0, -1.0, 0.0))
+            );
+        }
+    }
+
+    /// In `Q16`, tiny vectors (a few units of the last place) and long ones (whose length
+    /// is past the range) normalize to unit length too.
+    #[cfg(feature = "fixed")]
+    #[test]
+    fn q16_normalizes_tiny_and_long_vectors() {
+        use crate::Q16;
+        let ulp = Q16::from_bits(1);
+        let q = |x: f64| Q16::from_f64(x);
+        for v in [
+            Vec3::new(ulp, ulp, Q16::ZERO),
+            Vec3::new(Q16::ZERO, Q16::ZERO, -ulp),
+            Vec3::new(q(0.01), q(-0.003), q(0.002)),
+            Vec3::new(q(30000.0), q(30000.0), q(-30000.0)),
+        ] {
+            let n = v.normalize().unwrap();
+            assert!((n.length().to_f64() - 1.0).abs() < 1e-3, "{v:?}: {n:?}");
+            // The same direction: parallel to `v` (in `f64`).
+            let w = [v.x, v.y, v.z].map(|c| c.to_f64());
+            let norm = w.iter().map(|c| c * c).sum::<f64>().sqrt();
+            for (c, e) in [n.x, n.y, n.z].iter().zip(w) {
+                assert!((c.to_f64() - e / norm).abs() < 1e-3, "{v:?}: {n:?}");
+            }
+        }
     }
 
     #[test]

@@ -1371,7 +1371,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// Total energy: kinetic `½ vᵀMv`, stretch and bending (zero at the rest length, straight),
     /// and gravity's potential (zero at the origin), for tests and diagnostics. May saturate
     /// in `Q16` (a 70 px rope of 7 mass units falling its length under 200 px/s² changes it
-    /// by 98 000, past the format's 32 768).
+    /// by 98 000, past the format's 32 768); in floats, past the format's range (a mass near
+    /// its largest value), it overflows to ±∞.
     pub fn energy(&self) -> P::Scalar {
         let (x, v) = (&self.pos, &self.vel);
         let mv = self.mass_times(v);
@@ -1435,11 +1436,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         contacts.clear_impulses();
-        let info = self.step_resolving(dt, &mut forces, Some(contacts));
-        if info.is_err() {
-            contacts.clear_impulses();
-        }
-        info
+        contacts.finish_report(self.step_resolving(dt, &mut forces, Some(contacts)))
     }
 
     fn step_resolving<F: ForceField<P>>(

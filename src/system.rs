@@ -3,7 +3,9 @@
 
 use crate::body::Body;
 use crate::contact::Contacts;
-use crate::error::{check_index, check_inside, check_non_negative, check_points, check_positive};
+use crate::error::{
+    check_index, check_inside, check_inv_mass, check_non_negative, check_points, check_positive,
+};
 use crate::force::ForceField;
 use crate::integrator::{Integrator, Model, State, SymplecticEuler};
 use crate::shape::Shape;
@@ -98,7 +100,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad position, [`Error::InvalidParameter`]
-    /// for a negative or non-finite inverse mass, [`Error::IndexOutOfRange`] for a spring that
+    /// for an inverse mass that is negative or not finite, or whose mass `1 / w` the format
+    /// cannot hold (in `Q16`, 21 846 or more), [`Error::IndexOutOfRange`] for a spring that
     /// names a particle past the count, [`Error::OutOfRange`] for a position beyond
     /// [`Settings::bounds`], [`Error::ZeroRestLength`] for a spring whose rest
     /// length is not positive, finite and within the safe range, the errors of
@@ -112,7 +115,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Result<Self, Error> {
         check_points(Sh::flat(&positions))?;
         for &w in Sh::flat(&inv_mass) {
-            check_non_negative(w)?;
+            check_inv_mass(w)?;
         }
         let mut bad = None;
         topology.for_each_spring(|a, b, rest, material| {
@@ -268,10 +271,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for an `inv_mass` that is not
-    /// positive and finite.
+    /// positive and finite, or whose mass `1 / inv_mass` the format cannot hold.
     pub fn let_go(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_positive(inv_mass)?;
+        check_positive(check_inv_mass(inv_mass)?)?;
         Sh::flat_mut(&mut self.inv_mass)[i] = inv_mass;
         self.update_spring_rate();
         Ok(())
@@ -283,8 +286,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a `mass` that is not
-    /// positive and finite, or one that leaves the particle's inverse mass at 0 in the
-    /// format; [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would
+    /// positive and finite, or one that makes the particle heavier than the format holds
+    /// (in `Q16`, 21 846 or more); [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would
     /// not show).
     pub fn hang(&mut self, i: usize, mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
@@ -294,7 +297,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return Err(Error::Pinned { index: i });
         }
         let heavier = P::Scalar::ONE / (P::Scalar::ONE / w + mass);
-        if !(heavier > P::Scalar::ZERO && heavier.is_finite()) {
+        if !(heavier > P::Scalar::ZERO && check_inv_mass(heavier).is_ok()) {
             return Err(Error::InvalidParameter);
         }
         Sh::flat_mut(&mut self.inv_mass)[i] = heavier;
@@ -402,10 +405,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// Sets particle `i`'s inverse mass (0 pins it and stops it).
     ///
     /// # Errors
-    /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a negative or non-finite value.
+    /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a negative or non-finite
+    /// value, or one whose mass `1 / inv_mass` the format cannot hold (in `Q16`, 21 846 or more).
     pub fn set_inv_mass(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_non_negative(inv_mass)?;
+        check_inv_mass(inv_mass)?;
         Sh::flat_mut(&mut self.inv_mass)[i] = inv_mass;
         if inv_mass == P::Scalar::ZERO {
             Sh::flat_mut(&mut self.state.vel)[i] = P::default();
@@ -416,7 +420,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
 
     /// Total energy: kinetic + spring + gravitational (relative to the origin), for tests and
     /// diagnostics. Pinned particles count as infinitely heavy and still. Costs a division per
-    /// particle and a square root per spring; may saturate in `Q16`.
+    /// particle and a square root per spring; may saturate in `Q16`, and overflow to ±∞ in
+    /// floats past the format's range.
     pub fn energy(&self) -> P::Scalar {
         let half = P::Scalar::ratio(1, 2);
         let (x, v, w) = (self.positions(), self.velocities(), self.inv_masses());
@@ -563,11 +568,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let floor = contacts.rate(self.top_speed(dt), surface);
         contacts.clear_impulses();
-        let info = self.step_resolving(dt, forces, floor, resolve);
-        if info.is_err() {
-            contacts.clear_impulses();
-        }
-        info
+        contacts.finish_report(self.step_resolving(dt, forces, floor, resolve))
     }
 
     /// The fastest a free particle can go this frame: its speed now plus what gravity adds

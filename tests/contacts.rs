@@ -402,3 +402,45 @@ fn contacts_never_slow_time() {
     let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
     assert_eq!(info.substeps, dunas::system::MAX_SUBSTEPS);
 }
+
+/// In `Q16` an impulse past the format's range is clamped at its limit, and the step says
+/// so: a 10 000-unit weight on the rope's end landing on a floor gives it far more than the
+/// format's 32 768.
+#[cfg(feature = "fixed")]
+#[test]
+fn a_q16_impulse_past_the_range_marks_the_step_saturated() {
+    use dunas::Q16;
+    let q = Q16::from_f64;
+    let settings = Settings {
+        gravity: Vec2::new(q(0.0), q(-200.0)),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: q(300.0),
+        damping: q(0.5),
+    };
+    let mut rope: Rope<Vec2<Q16>, 8> = Rope::new(
+        Vec2::new(q(0.0), q(0.0)),
+        Vec2::new(q(7.0), q(0.0)),
+        q(1.0),
+        material,
+        settings,
+    )
+    .unwrap();
+    rope.hang(7, q(10_000.0)).unwrap();
+    let floor =
+        [Collider::half_space(Vec2::new(q(0.0), q(-3.0)), Vec2::new(q(0.0), q(1.0))).unwrap()];
+    let mut impulses = [Vec2::default(); 1];
+    let mut clamped = 0;
+    for _ in 0..120 {
+        let contacts = Contacts::new(&floor, q(0.05), Touch::Particles)
+            .unwrap()
+            .with_impulses(&mut impulses);
+        let info = rope.step_touching(q(1.0 / 60.0), (), &contacts).unwrap();
+        if !impulses[0].is_finite() {
+            clamped += 1;
+            assert!(info.saturated, "{impulses:?} not reported");
+        }
+    }
+    assert!(clamped > 0, "the landing never passed the range");
+}

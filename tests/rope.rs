@@ -589,3 +589,52 @@ fn a_hanging_rope_starts_and_stays_on_its_catenary() {
     );
     assert_eq!(weightless.err(), Some(Error::InvalidParameter));
 }
+
+/// An inverse mass whose mass the format cannot hold is refused wherever it comes in (a
+/// subnormal one in floats, below 3 units of the last place in `Q16`), and a refused call
+/// changes nothing: a step's impulses and energies divide by it.
+#[test]
+fn masses_the_format_cannot_hold_are_refused() {
+    let settings = Settings::<Vec2<f64>>::default();
+    let material = Material {
+        stiffness: 100.0,
+        damping: 0.0,
+    };
+    let mut rope: Rope<Vec2<f64>, 8> = Rope::new(
+        Vec2::new(0.0, 0.0),
+        Vec2::new(7.0, 0.0),
+        1.0,
+        material,
+        settings,
+    )
+    .unwrap();
+    let before = rope.inv_masses().to_vec();
+    assert_eq!(rope.set_inv_mass(3, 1e-310), Err(Error::InvalidParameter));
+    assert_eq!(rope.let_go(3, 1e-310), Err(Error::InvalidParameter));
+    assert_eq!(rope.hang(3, f64::MAX), Err(Error::InvalidParameter));
+    assert_eq!(rope.inv_masses(), &before[..]);
+    assert!(rope.set_inv_mass(3, 1e-300).is_ok() && rope.hang(4, 1e300).is_ok());
+    #[cfg(feature = "fixed")]
+    {
+        use dunas::Q16;
+        let q = Q16::from_f64;
+        let material = Material {
+            stiffness: q(100.0),
+            damping: q(0.0),
+        };
+        let mut rope: Rope<Vec2<Q16>, 8> = Rope::new(
+            Vec2::new(q(0.0), q(0.0)),
+            Vec2::new(q(7.0), q(0.0)),
+            q(1.0),
+            material,
+            Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(
+            rope.set_inv_mass(3, Q16::from_bits(2)),
+            Err(Error::InvalidParameter)
+        );
+        assert!(rope.set_inv_mass(3, Q16::from_bits(3)).is_ok());
+        assert_eq!(rope.hang(4, q(30_000.0)), Err(Error::InvalidParameter));
+    }
+}
