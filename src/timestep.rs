@@ -83,8 +83,10 @@ impl<S: Scalar> FixedTimestep<S> {
         steps
     }
 
-    /// How far the accumulator is into the next step, in `[0, 1)`: blend the last two
-    /// physics states by this to draw between steps.
+    /// How far the accumulator is into the next step, in `[0, 1]`: blend the last two
+    /// physics states by this to draw between steps. It is 1 only while the clock holds a
+    /// whole step or more that [`advance`](Self::advance) kept for later (rounding on a
+    /// frame of [`max_steps`](Self::max_steps) steps).
     pub fn alpha(&self) -> S {
         (self.accumulator / self.step).max(S::ZERO).min(S::ONE)
     }

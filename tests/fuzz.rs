@@ -7,8 +7,9 @@
 //! spline ropes' energy bounded. And the same for what a scene adds: colliders of every
 //! kind touched at the particles or the drawn curve (the reported impulses finite, or
 //! clamped and reported in `Q16`), snap limits, cuts, hung and released weights, hands and
-//! welds; a sail's wind, contacts, tears and drawing (its normals of unit length); and every
-//! constructor fed hostile numbers.
+//! welds; a sail's wind, contacts, tears and drawing (its normals of unit length); every
+//! constructor fed hostile numbers; and curves, smoothed rows, flattening, sample counts and
+//! the fixed-step clock.
 #![cfg(all(feature = "std", feature = "fixed"))]
 
 use dunas::breaking::Piece;
@@ -19,6 +20,7 @@ use dunas::integrator::{
     ExplicitEuler, ImplicitEuler, Integrator, Rk4, SymplecticEuler, Verlet, Xpbd,
 };
 use dunas::prelude::*;
+use dunas::smooth::Smoothed;
 use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 use dunas::spring::Snap;
 use dunas::surface::SurfaceTable;
@@ -1194,5 +1196,129 @@ proptest! {
     #[test]
     fn q16_anything_made_from_hostile_numbers_holds_up(m in make()) {
         made_holds_up::<Q16>(&m);
+    }
+}
+
+/// Curves, smoothed rows, flattening, sample counts and the fixed-step clock from hostile
+/// numbers.
+#[derive(Clone, Debug)]
+struct Shapes {
+    points: [(f64, f64); 8],
+    method: u8,
+    t: f64,
+    span: usize,
+    accuracy: f64,
+    len: usize,
+    frames: [f64; 4],
+}
+
+fn shapes() -> impl Strategy<Value = Shapes> {
+    let xy = || (hostile(), hostile());
+    (
+        [xy(), xy(), xy(), xy(), xy(), xy(), xy(), xy()],
+        (0..5u8, hostile(), prop_oneof![0..9usize, Just(usize::MAX)]),
+        (
+            hostile(),
+            0..70usize,
+            [hostile(), hostile(), hostile(), hostile()],
+        ),
+    )
+        .prop_map(
+            |(points, (method, t, span), (accuracy, len, frames))| Shapes {
+                points,
+                method,
+                t,
+                span,
+                accuracy,
+                len,
+                frames,
+            },
+        )
+}
+
+/// What the curve modules promise for any input: no panic; a refusal or points in range
+/// (within the curve's box where the curve is convex); lengths, weights and counts finite.
+fn shapes_hold_up<S: Scalar>(c: &Shapes) {
+    let s = S::from_f64;
+    let points: [Vec2<S>; 8] = c.points.map(|(x, y)| Vec2::new(s(x), s(y)));
+    let (t, accuracy) = (s(c.t), s(c.accuracy));
+    let mut out = vec![Vec2::new(S::ZERO, S::ZERO); c.len];
+    if let Ok(curve) = Bezier::new(points) {
+        // Within the control points' box, to a few units of rounding of the largest coordinate.
+        let (bx, largest) = (curve.bounding_box(), curve.polygon_length());
+        let slack = 8.0 * S::EPSILON.to_f64() * (1.0 + largest.to_f64().abs());
+        let inside = |p: Vec2<S>| {
+            p.in_safe_range()
+                && (0..2).all(|d| {
+                    let x = p.coord(d).to_f64();
+                    x >= bx.min.coord(d).to_f64() - slack && x <= bx.max.coord(d).to_f64() + slack
+                })
+        };
+        assert!(inside(curve.eval(t)), "{:?}", curve.eval(t));
+        let (a, b) = curve.split(t);
+        assert!(a.points().iter().chain(b.points()).all(|p| inside(*p)));
+        let tangent = curve.tangent(t);
+        assert!(tangent.is_finite() || S::FIXED_POINT, "{tangent:?}");
+        assert!(!curve.arclen(accuracy).to_f64().is_nan());
+        if let Ok(n) = curve.sample(&mut out) {
+            assert!(n <= c.len && out[..n].iter().all(|p| inside(*p)));
+        }
+        let cubic = Bezier::new([points[0], points[1], points[2], points[3]]).unwrap();
+        if let Ok(n) = dunas::flatten::flatten(&cubic, accuracy, &mut out) {
+            assert!(n <= c.len && out[..n].iter().all(|p| p.in_safe_range()));
+        }
+        if let Ok(n) = dunas::lod::segments(&curve, accuracy) {
+            assert!((1..=dunas::lod::MAX_SEGMENTS).contains(&n));
+        }
+    }
+    let method = [
+        Smoothing::Bezier,
+        Smoothing::BSpline,
+        Smoothing::CatmullRom,
+        Smoothing::Polyline,
+        Smoothing::NaturalSpline,
+    ][c.method as usize];
+    for smoothed in [
+        Smoothed::open(method, &points),
+        Smoothed::closed(method, &points),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        if let Ok(n) = smoothed.sample(&mut out) {
+            assert!(n <= c.len && out[..n].iter().all(|p| p.is_finite()));
+        }
+        assert!(smoothed.point(c.span, t).is_finite());
+        let mut weights = [S::ZERO; 8];
+        smoothed.weights(c.span, t, &mut weights);
+        let sum: f64 = weights.iter().map(|w| w.to_f64()).sum();
+        assert!((sum - 1.0).abs() < 1e-3, "{weights:?}");
+        assert!(!smoothed.length(accuracy).to_f64().is_nan());
+    }
+    if let Ok(mut clock) = FixedTimestep::new(s(c.accuracy), s(c.t)) {
+        for frame in c.frames {
+            assert!(clock.advance(s(frame)) <= clock.max_steps());
+            let alpha = clock.alpha();
+            assert!(alpha >= S::ZERO && alpha <= S::ONE, "{alpha:?}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f32_shapes_hold_up(c in shapes()) {
+        shapes_hold_up::<f32>(&c);
+    }
+
+    #[test]
+    fn f64_shapes_hold_up(c in shapes()) {
+        shapes_hold_up::<f64>(&c);
+    }
+
+    #[test]
+    fn q16_shapes_hold_up(c in shapes()) {
+        shapes_hold_up::<Q16>(&c);
     }
 }
