@@ -139,10 +139,12 @@ pub(crate) fn check_non_negative<S: crate::Scalar>(x: S) -> Result<S, Error> {
     }
 }
 
-/// `Ok(w)` for an inverse mass: 0 (pinned), or `> 0` and finite with a mass `1 / w` the
-/// format holds (in `Q16`, below 21 846); else [`Error::InvalidParameter`].
+/// `Ok(w)` for an inverse mass: 0 (pinned), or `> 0` and finite with a mass `1 / w` within
+/// [`Scalar::SAFE_RANGE`](crate::Scalar::SAFE_RANGE) (in `Q16`, `w` of at least
+/// `5 / 65 536`), so that a momentum, mass times a velocity in the safe range, fits the
+/// format; else [`Error::InvalidParameter`].
 pub(crate) fn check_inv_mass<S: crate::Scalar>(w: S) -> Result<S, Error> {
-    if check_non_negative(w)? == S::ZERO || (S::ONE / w).is_finite() {
+    if check_non_negative(w)? == S::ZERO || (S::ONE / w).in_safe_range() {
         Ok(w)
     } else {
         Err(Error::InvalidParameter)

@@ -205,6 +205,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a non-positive or non-finite mass or stiffness, a
+    /// mass beyond [`Scalar::SAFE_RANGE`] (so that a momentum fits the format), a
     /// negative damping, or a mass unit (see the [module](self)) that rounds to zero in the
     /// format (in `Q16`, a span's mass and `EA` and `c` over `2¹⁴` all below `2⁻¹⁷`);
     /// [`Error::ZeroRestLength`] when `start == end`; as
@@ -225,7 +226,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             )
         };
         check_points(&[start, end])?;
-        check_positive(mass)?;
+        if !check_positive(mass)?.in_safe_range() {
+            return Err(Error::InvalidParameter);
+        }
         material.check()?;
         settings.check()?;
         check_inside(&[start, end], settings.bounds)?;

@@ -100,8 +100,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad position, [`Error::InvalidParameter`]
-    /// for an inverse mass that is negative or not finite, or whose mass `1 / w` the format
-    /// cannot hold (in `Q16`, 21 846 or more), [`Error::IndexOutOfRange`] for a spring that
+    /// for an inverse mass that is negative or not finite, or a positive one whose mass
+    /// `1 / w` is beyond [`Scalar::SAFE_RANGE`] (in `Q16`, below `5 / 65 536`), so that a
+    /// momentum fits the format, [`Error::IndexOutOfRange`] for a spring that
     /// names a particle past the count, [`Error::OutOfRange`] for a position beyond
     /// [`Settings::bounds`], [`Error::ZeroRestLength`] for a spring whose rest
     /// length is not positive, finite and within the safe range, the errors of
@@ -271,7 +272,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for an `inv_mass` that is not
-    /// positive and finite, or whose mass `1 / inv_mass` the format cannot hold.
+    /// positive and finite, or whose mass `1 / inv_mass` is beyond [`Scalar::SAFE_RANGE`].
     pub fn let_go(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
         check_positive(check_inv_mass(inv_mass)?)?;
@@ -286,9 +287,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a `mass` that is not
-    /// positive and finite, or one that makes the particle heavier than the format holds
-    /// (in `Q16`, 21 846 or more); [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would
-    /// not show).
+    /// positive and finite, or one that makes the particle heavier than
+    /// [`Scalar::SAFE_RANGE`] (in `Q16`, an inverse mass below `5 / 65 536`: about 14 500
+    /// mass units in all);
+    /// [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would not show).
     pub fn hang(&mut self, i: usize, mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
         check_positive(mass)?;
@@ -406,7 +408,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`]; [`Error::InvalidParameter`] for a negative or non-finite
-    /// value, or one whose mass `1 / inv_mass` the format cannot hold (in `Q16`, 21 846 or more).
+    /// value, or a positive one whose mass `1 / inv_mass` is beyond [`Scalar::SAFE_RANGE`]
+    /// (in `Q16`, below `5 / 65 536`).
     pub fn set_inv_mass(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
         check_inv_mass(inv_mass)?;

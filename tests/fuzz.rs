@@ -1141,6 +1141,23 @@ fn made_holds_up<S: Scalar>(m: &Make) {
     );
     let (end, mass, material) = (point::<Vec2<S>>(&m.end), s(m.mass), m.material::<S>());
     let dt = s(m.dt);
+    // A floor a little below the start, touched at the curve, reporting its impulse.
+    let floor = Touching {
+        dt: m.dt,
+        colliders: vec![ColliderSpec {
+            kind: 2,
+            a: [0.0, -0.5, 0.0],
+            b: [0.0, 1.0, 0.0],
+            c: [0.0; 2],
+            radius: 0.0,
+            velocity: None,
+            friction: Some((0.5, 0.3)),
+            restitution: None,
+        }],
+        thickness: 0.05,
+        touch: 5,
+        impulses: 1,
+    };
     let in_range = |what: &str, points: &[Vec2<S>]| {
         assert!(
             points.iter().all(|p| p.in_safe_range()),
@@ -1150,6 +1167,10 @@ fn made_holds_up<S: Scalar>(m: &Make) {
     if let Ok(mut rope) = Rope::<Vec2<S>, 8>::new(origin2, end, mass, material, m.settings()) {
         in_range("rope", rope.positions());
         let _ = rope.step(dt);
+        in_range("rope", rope.positions());
+        floor
+            .run(|dt, contacts| rope.step_touching(dt, (), contacts))
+            .ok();
         in_range("rope", rope.positions());
     }
     let hung = Rope::<Vec2<S>, 8>::hanging(origin2, end, s(m.length), mass, material, m.settings());
@@ -1165,6 +1186,10 @@ fn made_holds_up<S: Scalar>(m: &Make) {
         // Past a float format's range (a mass near its largest value) it overflows to ±∞.
         assert!(!energy.to_f64().is_nan(), "{m:?}: energy {energy:?}");
         let _ = rope.step(dt);
+        in_range("spline rope", rope.positions());
+        floor
+            .run(|dt, contacts| rope.step_touching(dt, (), contacts))
+            .ok();
         in_range("spline rope", rope.positions());
     }
     let (du, dv) = (point::<Vec3<S>>(&m.end), point::<Vec3<S>>(&m.gravity));
