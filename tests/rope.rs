@@ -594,7 +594,7 @@ fn a_hanging_rope_starts_and_stays_on_its_catenary() {
 /// mass, a weight hung on, a rope's total), and a refused call changes nothing: a step's
 /// impulses, mass times velocity, must fit the format.
 #[test]
-fn masses_the_format_cannot_hold_are_refused() {
+fn masses_beyond_the_safe_range_are_refused() {
     let settings = Settings::<Vec2<f64>>::default();
     let material = Material {
         stiffness: 100.0,
