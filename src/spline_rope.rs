@@ -7,7 +7,7 @@
 //! quadrature on each of its `K - 3` spans:
 //!
 //! - **mass** `M_ij = ∫ ρ N_i N_j ds`, the consistent matrix (banded, 7 diagonals), factored
-//!   once by Cholesky (in `f64`, stored in the format);
+//!   once as `L D Lᵀ` (in `f64`, stored in the format);
 //! - **gravity** `f_i = ∫ ρ N_i ds · g`;
 //! - **stretch** `½ ∫ EA ε̄² ds` while taut, where `ε̄` is the strain `|x'| − 1` at 3 Gauss
 //!   points a span, projected (least squares) on the quadratic splines of the same breaks
@@ -50,19 +50,22 @@
 //! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
 //! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
-//! division), two banded solves and about `126·(K − 3) + 40·K` multiplies (950 at
-//! `K = 8`); while a span is slack, a third solve and `6·K` more. Formats: `f32` and `f64`
-//! for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes measured in pixels (a 70 px rope
-//! of 7 mass units at `EA = 3000` ends 0.17 px from `f64` after 2 s); the construction
-//! (mass matrix, factors, bound) runs in `f64` and is stored in the format.
+//! division), two banded solves and about `148·K − 380` multiplies while every span is
+//! taut (808 at `K = 8`, counted), up to a fifth more while one is slack (a third solve;
+//! the projected strain at the stretch points, which a taut rope skips); no division.
+//! Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes
+//! measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends 0.10 px from `f64`
+//! after 2 s); the construction (mass matrix, factors, bound) runs in `f64` and is stored
+//! in the format.
 //!
 //! Units: a step divides its equations by a mass unit `m̄`, a span's mass (`mass / (K − 3)`),
 //! or `EA / 2¹⁴` or `c / 2¹⁴` where more; explicit substeps are taken in velocity changes, not
 //! accelerations. So in `Q16` a rope's precision does not depend on its mass, and a whip far
 //! past the format's range is held: the `mcu_spline` rope 30 times lighter or 3 times
-//! heavier, or 5 times larger (350 px under 1 000 px/s², its end whipping at about
-//! 100 000 px/s² with 16 control points), ends within 1% of its length from `f64` after 2 s
-//! (`tests/spline_rope.rs`). What `Q16` clamps and reports is in [`SplineRope::step`].
+//! heavier, or 2 to 7 times larger (up to 490 px under 1 400 px/s², its end whipping past
+//! 100 000 px/s² with 16 control points), stays within 1% of its length from `f64` for
+//! 2 s with 8, 12 and 16 control points (`tests/spline_rope.rs`; measured at most 0.57%).
+//! What `Q16` clamps and reports is in [`SplineRope::step`].
 //!
 //! ```
 //! use dunas::prelude::*;
@@ -127,9 +130,13 @@ const GAUSS: [(f64, f64); 4] = [
     (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
 ];
 
+/// Stretch points a span: [`STRETCH_GAUSS`]'s. (Two, exact to degree 3, put mode 3 of a
+/// hanging rope of 8 control points 1.2% off the continuum, against 0.01% with three.)
+const POINTS: usize = 3;
+
 /// The stretch's quadrature: 3-point Gauss-Legendre, exact for the projection's Gram matrix
 /// (quadratic times quadratic) and for a straight rope's stretch stiffness.
-const STRETCH_GAUSS: [(f64, f64); 3] = [
+const STRETCH_GAUSS: [(f64, f64); POINTS] = [
     (-0.774_596_669_241_483_4, 0.555_555_555_555_556),
     (0.0, 0.888_888_888_888_889),
     (0.774_596_669_241_483_4, 0.555_555_555_555_556),
@@ -144,7 +151,11 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     pinned: [bool; K],
     /// At each span's stretch points, the slope's weights on the control points'
     /// differences, by `s` (see [`slope_at`]).
-    quad: [[[P::Scalar; 3]; 3]; K],
+    quad: [[[P::Scalar; 3]; POINTS]; K],
+    /// The same weights times the point's quadrature weight over the span, `d_a·w/2` (the
+    /// slope weights times `w·ds/2`): what a tension's pull at the point does to the
+    /// differences, the quadrature taken in the table (see [`add_pull`]).
+    pulls: [[[P::Scalar; 3]; POINTS]; K],
     /// A span's length `ds`: the stretch's pulls are summed per unit of it and scaled once,
     /// so that no product in a step grows with a span's length (in `Q16` a long span's
     /// pull saturated).
@@ -156,16 +167,16 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// `1 / ∫ ρ N_i ds`, 0 where pinned: the inverse masses a force field and the contacts
     /// see.
     inv_load: [P::Scalar; K],
-    /// The banded Cholesky factor of the mass matrix over `m̄`, pinned rows made identity:
-    /// `chol[i][d]` is `L[i][i - d]`, except `chol[i][0] = 1 / L[i][i]`.
+    /// The banded `L D Lᵀ` factor of the mass matrix over `m̄`, pinned rows made identity:
+    /// `chol[i][d]` is `L[i][i - d]`, except `chol[i][0] = 1 / D[i]`.
     chol: [[P::Scalar; 4]; K],
     /// Each span's Bézier extraction: Bézier point `r` is `Σ_k ext[e][r][k] · p_(e+k)`.
     ext: [[[P::Scalar; 4]; 4]; K],
     /// The strain's projection: at each span's stretch points the quadratic basis
     /// `N̂_e..N̂_(e+2)`; the stretch points' weights in a span (`w/2`); the factor of the
     /// Gram matrix `Σ (w/2)·N̂_a·N̂_b` (diagonal inverted, unit past `K - 2`).
-    proj: [[[P::Scalar; 3]; 3]; K],
-    weights: [P::Scalar; 3],
+    proj: [[[P::Scalar; 3]; POINTS]; K],
+    weights: [P::Scalar; POINTS],
     gram: [[P::Scalar; 3]; K],
     /// The mass matrix over `m̄` in band form (`mass_band[i][d] = M[i][i+d] / m̄`), for the
     /// implicit stepper's products.
@@ -262,14 +273,15 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             pos: [start; K],
             vel: [P::default(); K],
             pinned: [false; K],
-            quad: [[[zero; 3]; 3]; K],
+            quad: [[[zero; 3]; POINTS]; K],
+            pulls: [[[zero; 3]; POINTS]; K],
             ds: P::Scalar::from_f64(ds),
             unit,
             load: [zero; K],
             inv_load: [zero; K],
             chol: [[zero; 4]; K],
             ext: [[[zero; 4]; 4]; K],
-            proj: [[[zero; 3]; 3]; K],
+            proj: [[[zero; 3]; POINTS]; K],
             weights: STRETCH_GAUSS.map(|(_, w)| P::Scalar::from_f64(w / 2.0)),
             gram: [[zero; 3]; K],
             mass_band: [[zero; 4]; K],
@@ -315,6 +327,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 for a in 0..3 {
                     d -= dn[a];
                     rope.quad[e][q][a] = P::Scalar::from_f64(d / ds);
+                    rope.pulls[e][q][a] = P::Scalar::from_f64(d * w / 2.0);
                 }
                 for a in 0..3 {
                     rope.proj[e][q][a] = P::Scalar::from_f64(n[a]);
@@ -330,8 +343,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 }
             }
         }
-        let gram =
-            cholesky(&gram, |x| 1.0 / crate::catenary::sqrt(x)).ok_or(Error::InvalidParameter)?;
+        let gram = ldl(&gram, finite_inverse).ok_or(Error::InvalidParameter)?;
         for i in 0..K {
             for d in 0..3 {
                 rope.gram[i][d] = P::Scalar::from_f64(gram[i][d]);
@@ -357,9 +369,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             };
         }
         let m = self.reduced(&band, (0.0, 1.0));
-        // The diagonal is kept inverted: a step multiplies where it would divide.
-        let chol =
-            cholesky(&m, |x| 1.0 / crate::catenary::sqrt(x)).ok_or(Error::InvalidParameter)?;
+        // `1/D` is kept: a step multiplies where it would divide. The reduced matrix is
+        // positive definite, so a failure is the mass over `m̄` underflowing `f64`: a mass far
+        // below its stiffness.
+        let chol = ldl(&m, finite_inverse).ok_or(Error::TooStiff)?;
         for i in 0..K {
             for d in 0..4 {
                 self.chol[i][d] = P::Scalar::from_f64(chol[i][d]);
@@ -379,11 +392,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         } else {
             [[0.0; 4]; K]
         };
-        let (quad, proj, weights, gram) = (&self.quad, &self.proj, &self.weights, &self.gram);
+        let (quad, pulls) = (&self.quad, &self.pulls);
+        let (proj, weights, gram) = (&self.proj, &self.weights, &self.gram);
         let curvature = &curvature;
         let stiffness = |ei: f64| {
             move |x: &[f64; K]| -> [f64; K] {
-                let mut strain = [[Wide(0.0); 3]; K];
+                let mut strain = [[Wide(0.0); POINTS]; K];
                 let dx = differences(x);
                 for e in 0..K - 3 {
                     for (q, d) in quad[e].iter().enumerate() {
@@ -398,12 +412,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 };
                 let mut pull = [0.0; K];
                 for e in 0..K - 3 {
-                    for (q, d) in quad[e].iter().enumerate() {
-                        let g = ea * weights[q].to_f64() * strain[e][q].0;
-                        add_pull(&mut pull, &d.map(|d| d.to_f64()), e, g);
+                    for (q, d) in pulls[e].iter().enumerate() {
+                        add_pull(&mut pull, &d.map(|d| d.to_f64()), e, ea * strain[e][q].0);
                     }
                 }
-                spread(&mut y, &pull.map(|g| g * ds));
+                spread(&mut y, &pull);
                 y
             }
         };
@@ -675,36 +688,58 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// The stretch at each span's stretch points: the slope `x'`, `1 / |x'|` (0 where the
-    /// curve stops), and the strain `|x'| − 1` with its rate (`x` and `y` of `strain`),
-    /// both projected on the quadratic splines (against locking).
-    fn strains(&self, x: &[P; K], v: &[P; K]) -> Strains<P, K> {
+    /// curve stops), and the strain `|x'| − 1` projected on the quadratic splines (against
+    /// locking); with velocities `v`, its rate `x'·v' / |x'|` projected too (else the rate is
+    /// 0). The projected strain at the stretch points is evaluated only where a coefficient
+    /// is below 0 (a quadratic spline lies within the hull of its coefficients).
+    fn strains(&self, x: &[P; K], v: Option<&[P; K]>) -> Strains<P, K> {
         let zero = P::Scalar::ZERO;
         let mut out = Strains {
             pos: *x,
-            slope: [[P::default(); 3]; K],
-            inv: [[zero; 3]; K],
-            fitted: [Vec2::new(zero, zero); K],
-            strain: [[zero; 3]; K],
-            taut: false,
+            slope: [[P::default(); POINTS]; K],
+            inv: [[zero; POINTS]; K],
+            strain: [zero; K],
+            rate: [zero; K],
+            slack: None,
         };
-        let mut strain = [[Vec2::new(zero, zero); 3]; K];
-        let (dx, dv) = (differences(x), differences(v));
+        // The strain (`x`) and its rate (`y`) at the stretch points, fitted together.
+        let mut strain = [[Vec2::new(zero, zero); POINTS]; K];
+        let dx = differences(x);
+        let dv = v.map(differences);
         for e in 0..K - 3 {
             for (q, weights) in self.quad[e].iter().enumerate() {
-                let (d, dv) = (slope_at(weights, &dx, e), slope_at(weights, &dv, e));
+                let d = slope_at(weights, &dx, e);
                 // `|x'|` and its inverse from one inverse square root (in `Q16` no division).
                 let square = d.dot(d);
                 let inv = square.inv_sqrt();
                 out.slope[e][q] = d;
                 out.inv[e][q] = inv;
-                let rate = d.dot(dv) * inv;
-                strain[e][q] = Vec2::new(square * inv - P::Scalar::ONE, rate);
+                strain[e][q].x = square * inv - P::Scalar::ONE;
+                if let Some(dv) = &dv {
+                    strain[e][q].y = d.dot(slope_at(weights, dv, e)) * inv;
+                }
             }
         }
-        out.fitted = fit(&self.proj, &self.weights, &self.gram, &strain, false);
-        out.strain = evaluate(&self.proj, &out.fitted.map(|s| s.x));
-        out.taut = out.strain[..K - 3].iter().flatten().all(|&s| s >= zero);
+        if v.is_some() {
+            let fitted = fit(&self.proj, &self.weights, &self.gram, &strain, false);
+            out.strain = fitted.map(|s| s.x);
+            out.rate = fitted.map(|s| s.y);
+        } else {
+            let strain = strain.map(|span| span.map(|s| s.x));
+            out.strain = fit(&self.proj, &self.weights, &self.gram, &strain, false);
+        }
+        if out.strain.iter().any(|&c| c < zero) {
+            let points = evaluate(&self.proj, &out.strain);
+            if points[..K - 3].iter().flatten().any(|&s| s < zero) {
+                out.slack = Some(points);
+            }
+        }
         out
+    }
+
+    /// The projected strain at the stretch points of `st`.
+    fn strain_points(&self, st: &Strains<P, K>) -> [[P::Scalar; POINTS]; K] {
+        st.slack.unwrap_or_else(|| evaluate(&self.proj, &st.strain))
     }
 
     /// The generalized forces from outside over `m̄`: gravity and a field's accelerations
@@ -731,12 +766,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         let (ea, c) = (self.stretch.stiffness * per, self.damping * per);
         // Taut, the tension is the quadratic spline `EA·ε̂ + c·dε̂/dt`.
-        let mut fitted = st.fitted.map(|s| ea * s.x + c * s.y);
-        if !st.taut {
+        let mut fitted: [P::Scalar; K] =
+            core::array::from_fn(|i| ea * st.strain[i] + c * st.rate[i]);
+        if let Some(points) = &st.slack {
             // Slack, it falls short of that by `EA·ε̂ − T(ε̂)` (`stretch_tension`), which is
             // projected too: the energy's gradient is the projected tension.
-            let mut short = [[P::Scalar::ZERO; 3]; K];
-            for (span, strains) in short.iter_mut().zip(&st.strain).take(K - 3) {
+            let mut short = [[P::Scalar::ZERO; POINTS]; K];
+            for (span, strains) in short.iter_mut().zip(points).take(K - 3) {
                 for (s, &strain) in span.iter_mut().zip(strains) {
                     if strain < P::Scalar::ZERO {
                         *s = ea * strain - stretch_tension(ea, P::Scalar::ONE + strain);
@@ -751,15 +787,14 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let tension = evaluate(&self.proj, &fitted);
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, d) in self.quad[e].iter().enumerate() {
-                let g = st.slope[e][q] * (tension[e][q] * st.inv[e][q] * self.weights[q]);
+            for (q, d) in self.pulls[e].iter().enumerate() {
+                // Minus the energy's gradient: the stretch pulls the rope together.
+                let g = st.slope[e][q] * -(tension[e][q] * st.inv[e][q]);
                 add_pull(&mut pull, d, e, g);
             }
         }
-        // The quadrature's `w·ds`, its `ds` taken once; minus the energy's gradient: the
-        // stretch pulls the rope together.
-        spread(&mut f, &pull.map(|g| g * -self.ds));
-        let taut = st.taut;
+        spread(&mut f, &pull);
+        let taut = st.slack.is_none();
         (f, Tensions { tension, taut })
     }
 
@@ -779,24 +814,24 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let ea = self.stretch.stiffness;
         // `h²` is formed after each product: in `Q16` `1/60²` alone would be 1.2% short.
         let mut lin = Linearized {
-            dir: [[P::default(); 3]; K],
-            axial: [[if stiffness { ea * h * h } else { zero }; 3]; K],
-            transverse: [[zero; 3]; K],
+            dir: [[P::default(); POINTS]; K],
+            axial: [[if stiffness { ea * h * h } else { zero }; POINTS]; K],
+            transverse: [[zero; POINTS]; K],
             uniform: t.taut || !stiffness,
             stiffness,
             bend: if stiffness { h } else { zero },
             damping: h * self.damping,
-            damp_dir: [[P::default(); 3]; K],
+            damp_dir: [[P::default(); POINTS]; K],
         };
         for e in 0..K - 3 {
-            for q in 0..3 {
+            for q in 0..POINTS {
                 let inv = st.inv[e][q];
                 lin.dir[e][q] = st.slope[e][q] * inv;
                 lin.damp_dir[e][q] = lin.dir[e][q];
                 if stiffness {
                     lin.transverse[e][q] = (t.tension[e][q].max(zero) * inv).min(ea) * h * h;
-                    if !t.taut {
-                        let l = P::Scalar::ONE + st.strain[e][q];
+                    if let Some(points) = &st.slack {
+                        let l = P::Scalar::ONE + points[e][q];
                         lin.axial[e][q] = stretch_slope(ea, l) * h * h;
                     }
                 }
@@ -810,9 +845,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// (matrix-free: one projection for the damping, one or two more for the stretch).
     fn stiffness_times(&self, lin: &Linearized<P, K>, u: &[P; K]) -> [P; K] {
         let zero = P::Scalar::ZERO;
-        let mut slope = [[P::default(); 3]; K];
-        let mut along = [[zero; 3]; K];
-        let mut rate = [[zero; 3]; K];
+        let mut slope = [[P::default(); POINTS]; K];
+        let mut along = [[zero; POINTS]; K];
+        let mut rate = [[zero; POINTS]; K];
         let du = differences(u);
         for e in 0..K - 3 {
             for (q, weights) in self.quad[e].iter().enumerate() {
@@ -829,12 +864,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         if c > zero {
             project(&self.proj, &self.weights, &self.gram, &mut rate);
         }
-        let mut tension = [[zero; 3]; K];
+        let mut tension = [[zero; POINTS]; K];
         if lin.stiffness {
             let mut strain = along;
             project(&self.proj, &self.weights, &self.gram, &mut strain);
             for e in 0..K - 3 {
-                for q in 0..3 {
+                for q in 0..POINTS {
                     tension[e][q] = lin.axial[e][q] * strain[e][q];
                 }
             }
@@ -844,18 +879,18 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
-            for (q, d) in self.quad[e].iter().enumerate() {
+            for (q, d) in self.pulls[e].iter().enumerate() {
                 let dir = lin.dir[e][q];
                 let mut g = lin.damp_dir[e][q] * (c * rate[e][q]);
                 if lin.stiffness {
                     g += dir * tension[e][q]
                         + (slope[e][q] - dir * along[e][q]) * lin.transverse[e][q];
                 }
-                add_pull(&mut pull, d, e, g * self.weights[q]);
+                add_pull(&mut pull, d, e, g);
             }
         }
         let mut out = [P::default(); K];
-        spread(&mut out, &pull.map(|g| g * self.ds));
+        spread(&mut out, &pull);
         if self.bending > zero && lin.bend > zero {
             let h = lin.bend;
             for (o, b) in out.iter_mut().zip(self.bending_times(u)) {
@@ -891,8 +926,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     ) -> ([P; K], Option<Ends<P, K>>) {
         let zero = P::Scalar::ZERO;
         let (x0, v0) = (*x0, *v0);
-        let still = [P::default(); K];
-        let start = self.strains(&x0, &v0);
+        let start = self.strains(&x0, Some(&v0));
         let (_, t0) = self.forces(&start, external, P::Scalar::ONE);
         // `D·u`: the drag and the strain damping, linear, frozen at the start.
         let damping = self.linearized(&start, &t0, h, false);
@@ -904,7 +938,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let dot = |a: &[P; K], b: &[P; K]| a.iter().zip(b).fold(zero, |s, (x, y)| s + x.dot(*y));
         let at = |w: &[P; K]| -> [P; K] { core::array::from_fn(|i| x0[i] + w[i] * h) };
         let mut w = v0;
-        let mut st = self.strains(&at(&w), &still);
+        let mut st = self.strains(&at(&w), None);
         let mut first = zero;
         let mut pre = None;
         for _ in 0..NEWTON {
@@ -952,7 +986,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let mut accepted = false;
             for _ in 0..LINE_SEARCH {
                 let trial: [P; K] = core::array::from_fn(|i| w[i] + step[i] * alpha);
-                let trial_st = self.strains(&at(&trial), &still);
+                let trial_st = self.strains(&at(&trial), None);
                 let change = alpha * linear
                     + P::Scalar::ratio(1, 2) * alpha * alpha * curve
                     + (self.elastic_potential(&trial_st) - energy);
@@ -998,7 +1032,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let elastic = if halvings == 0 {
                 self.elastic_potential(st)
             } else {
-                self.elastic_potential(&self.strains(&x, &[P::default(); K]))
+                self.elastic_potential(&self.strains(&x, None))
             };
             // The kinetic energy the step may end with: the start's, less what the
             // positions gained (none where they did not move).
@@ -1056,7 +1090,6 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let along = |x: &[P; K], v: &[P; K], h: P::Scalar| -> [P; K] {
             core::array::from_fn(|i| x[i] + v[i] * h)
         };
-        let still = [P::default(); K];
         if P::Scalar::FIXED_POINT {
             // `Q16` cannot resolve the energy: the linearized step as it is.
             let (w, _) = self.backward_euler((&x0, &v0), h, external, iterations);
@@ -1080,7 +1113,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let (w, end) = self.backward_euler((&xs, &self.free(vs)), step, external, iterations);
             if let Some(Ends { st, .. }) = end {
                 let x = along(&xs, &w, step);
-                let potential = self.elastic_potential(&self.strains(&x0, &still));
+                let potential = self.elastic_potential(&self.strains(&x0, None));
                 // BDF2's energy may rise in a step (a percent or so of the motion's), but
                 // not past where the last backward Euler step left it: a step that would is
                 // taken as backward Euler's, held.
@@ -1211,7 +1244,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
 
     /// `B·u`: the strain that `u` adds along the directions `dir`, weighted onto the
     /// quadratic splines (`Σ w·N̂_a·(x'/|x'|)·u'` per function `a`).
-    fn strain_weights(&self, dir: &[[P; 3]; K], u: &[P; K]) -> [P::Scalar; K] {
+    fn strain_weights(&self, dir: &[[P; POINTS]; K], u: &[P; K]) -> [P::Scalar; K] {
         let mut out = [P::Scalar::ZERO; K];
         let du = differences(u);
         for e in 0..K - 3 {
@@ -1226,7 +1259,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     }
 
     /// `Bᵀ·c`: the generalized forces of a strain field `Σ c_a N̂_a` along `dir`.
-    fn strain_pull(&self, dir: &[[P; 3]; K], c: &[P::Scalar; K]) -> [P; K] {
+    fn strain_pull(&self, dir: &[[P; POINTS]; K], c: &[P::Scalar; K]) -> [P; K] {
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
             for (q, d) in self.quad[e].iter().enumerate() {
@@ -1263,7 +1296,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         // D: the Gram matrix, over the stretch's scale.
         out.factor[K - 1][K - 1] = P::Scalar::ONE / scale;
         for e in 0..K - 3 {
-            for q in 0..3 {
+            for q in 0..POINTS {
                 let n = self.proj[e][q];
                 for a in 0..3 {
                     for b in 0..3 {
@@ -1306,7 +1339,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             }
         }
         let band = self.reduced(&band, (P::Scalar::ZERO, one));
-        let banded = cholesky(&band, |x| one / x.sqrt()).unwrap_or(self.chol);
+        let banded = ldl(&band, |x| Some(one / x).filter(|i| i.is_finite())).unwrap_or(self.chol);
         let stretch = if self.within_precision(h) {
             self.stretch_solve(lin, h, &banded)
         } else {
@@ -1334,7 +1367,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// The stretch and bending energy at strains `st`, over `m̄`.
     fn elastic_potential(&self, st: &Strains<P, K>) -> P::Scalar {
         let mut e = P::Scalar::ZERO;
-        for span in st.strain.iter().take(K - 3) {
+        for span in self.strain_points(st).iter().take(K - 3) {
             for (&strain, &w) in span.iter().zip(&self.weights) {
                 e += stretch_energy(self.stretch.stiffness, P::Scalar::ONE + strain) * w * self.ds;
             }
@@ -1379,7 +1412,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     pub fn energy(&self) -> P::Scalar {
         let (x, v) = (&self.pos, &self.vel);
         let mv = self.mass_times(v);
-        let mut e = self.elastic_potential(&self.strains(x, &[P::default(); K]));
+        let mut e = self.elastic_potential(&self.strains(x, None));
         for i in 0..K {
             e += v[i].dot(mv[i]) * P::Scalar::ratio(1, 2)
                 - self.settings.gravity.dot(x[i]) * self.load[i];
@@ -1525,7 +1558,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 // In impulses, velocity changes by the mass unit: in `Q16` the format holds
                 // accelerations hundreds of times its range (a whipping end's).
                 let impulses = external.map(|f| f * h);
-                let st = self.strains(&self.pos, &self.vel);
+                let st = self.strains(&self.pos, Some(&self.vel));
                 let (j, _) = self.forces(&st, &impulses, h);
                 let mut dv = self.free(j);
                 solve(&self.chol, &mut dv);
@@ -1591,12 +1624,20 @@ fn stretch_tension<S: Scalar>(ea: S, l: S) -> S {
         return ea * (l - one);
     }
     let delta = S::ratio(SLACK.0, SLACK.1);
-    let x = (l - one + delta) / delta;
+    let x = slack_step(l);
     if x <= S::ZERO {
         S::ZERO
     } else {
         ea * delta * x * x * (x - one)
     }
+}
+
+/// `x = (l − 1 + δ) / δ` of the slack step at stretch `l`, `δ` = [`SLACK`]: a product, no
+/// division (in `Q16` a 64-bit library call on a Cortex-M0).
+#[inline]
+fn slack_step<S: Scalar>(l: S) -> S {
+    const { assert!(SLACK.1.is_multiple_of(SLACK.0) && SLACK.1 / SLACK.0 < 1 << 14) };
+    (l - S::ONE) * S::from_i16((SLACK.1 / SLACK.0) as i16) + S::ONE
 }
 
 /// The slope of [`stretch_tension`] by `l`, negative slopes (the slack step's first part)
@@ -1606,8 +1647,7 @@ fn stretch_slope<S: Scalar>(ea: S, l: S) -> S {
     if l >= one {
         return ea;
     }
-    let delta = S::ratio(SLACK.0, SLACK.1);
-    let x = (l - one + delta) / delta;
+    let x = slack_step(l);
     (ea * x * (S::from_i16(3) * x - S::from_i16(2))).max(S::ZERO)
 }
 
@@ -1621,7 +1661,7 @@ fn stretch_energy<S: Scalar>(ea: S, l: S) -> S {
         let strain = l - one;
         return S::ratio(1, 2) * ea * strain * strain;
     }
-    let x = ((l - one + delta) / delta).max(S::ZERO);
+    let x = slack_step(l).max(S::ZERO);
     ea * delta * delta * (x * x * x * (S::ratio(1, 4) * x - S::ratio(1, 3)) + twelfth)
 }
 
@@ -1701,26 +1741,26 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
 struct Strains<P: Point, const K: usize> {
     /// The control points they were taken at.
     pos: [P; K],
-    slope: [[P; 3]; K],
-    inv: [[P::Scalar; 3]; K],
-    /// The strain `|x'| − 1` (`x`) and its rate (`y`), projected: the coefficients of their
-    /// quadratic splines.
-    fitted: [Vec2<P::Scalar>; K],
-    /// The projected strain at the stretch points.
-    strain: [[P::Scalar; 3]; K],
-    /// Whether it is `≥ 0` at every stretch point (every span taut).
-    taut: bool,
+    slope: [[P; POINTS]; K],
+    inv: [[P::Scalar; POINTS]; K],
+    /// The strain `|x'| − 1` and its rate, projected: the coefficients of their quadratic
+    /// splines (entry `K − 1` is 0).
+    strain: [P::Scalar; K],
+    rate: [P::Scalar; K],
+    /// The projected strain at the stretch points where it is below 0 at one of them (a
+    /// span slack); `None` while every span is taut.
+    slack: Option<[[P::Scalar; POINTS]; K]>,
 }
 
 /// The tension over the mass unit at a rope's stretch points and whether every span is taut.
 struct Tensions<S, const K: usize> {
-    tension: [[S; 3]; K],
+    tension: [[S; POINTS]; K],
     taut: bool,
 }
 
 /// The implicit step's preconditioner: see [`SplineRope::preconditioner`].
 struct Preconditioner<P: Point, const K: usize> {
-    /// The factor of `M·(1 + drag) + h²·EI·B` as [`cholesky`] gives it.
+    /// The factor of `M·(1 + drag) + h²·EI·B` as [`ldl`] gives it.
     banded: [[P::Scalar; 4]; K],
     stretch: Option<StretchSolve<P, K>>,
 }
@@ -1728,7 +1768,7 @@ struct Preconditioner<P: Point, const K: usize> {
 /// The implicit step's preconditioner for the stretch: see [`SplineRope::stretch_solve`].
 struct StretchSolve<P: Point, const K: usize> {
     /// The rope's directions at the stretch points it was built at.
-    dir: [[P; 3]; K],
+    dir: [[P; POINTS]; K],
     /// `M'⁻¹ Bᵀ e_a`, one column a quadratic spline.
     columns: [[P; K]; K],
     /// The Cholesky factor of `D + B M'⁻¹ Bᵀ` ([`dense_cholesky`]).
@@ -1757,9 +1797,9 @@ struct History<P: Point, const K: usize> {
 /// A backward Euler step's stiffness at a rope's stretch points: see
 /// [`SplineRope::linearized`].
 struct Linearized<P: Point, const K: usize> {
-    dir: [[P; 3]; K],
-    axial: [[P::Scalar; 3]; K],
-    transverse: [[P::Scalar; 3]; K],
+    dir: [[P; POINTS]; K],
+    axial: [[P::Scalar; POINTS]; K],
+    transverse: [[P::Scalar; POINTS]; K],
     /// Every `axial` is `h²·EA`: the projected strain needs no second projection.
     uniform: bool,
     /// Whether the stretch's stiffness is in (else `dir`, `axial` and `transverse` are unused).
@@ -1769,7 +1809,7 @@ struct Linearized<P: Point, const K: usize> {
     /// `h·c`, the strain damping's share.
     damping: P::Scalar,
     /// The directions the strain damping acts along: `dir`, or those it was frozen at.
-    damp_dir: [[P; 3]; K],
+    damp_dir: [[P; POINTS]; K],
 }
 
 /// How a [`SplineRope`] steps, chosen by the type of its [`Settings::integrator`]:
@@ -2041,10 +2081,10 @@ where
 /// coefficients (entry `K − 1` is 0). With `sparse`, the field's zeros are skipped: worth a
 /// test per value where most are 0.
 fn fit<T, S: Copy, const K: usize>(
-    proj: &[[[S; 3]; 3]; K],
-    weights: &[S; 3],
+    proj: &[[[S; 3]; POINTS]; K],
+    weights: &[S; POINTS],
     gram: &[[S; 3]; K],
-    field: &[[T; 3]; K],
+    field: &[[T; POINTS]; K],
     sparse: bool,
 ) -> [T; K]
 where
@@ -2052,7 +2092,7 @@ where
 {
     let mut c = [T::default(); K];
     for e in 0..K - 3 {
-        for q in 0..3 {
+        for q in 0..POINTS {
             if sparse && field[e][q] == T::default() {
                 continue;
             }
@@ -2067,13 +2107,16 @@ where
 }
 
 /// The values at the stretch points of the quadratic spline of coefficients `c`.
-fn evaluate<T, S: Copy, const K: usize>(proj: &[[[S; 3]; 3]; K], c: &[T; K]) -> [[T; 3]; K]
+fn evaluate<T, S: Copy, const K: usize>(
+    proj: &[[[S; 3]; POINTS]; K],
+    c: &[T; K],
+) -> [[T; POINTS]; K]
 where
     T: Copy + Default + core::ops::AddAssign + Mul<S, Output = T>,
 {
-    let mut field = [[T::default(); 3]; K];
+    let mut field = [[T::default(); POINTS]; K];
     for e in 0..K - 3 {
-        for q in 0..3 {
+        for q in 0..POINTS {
             for a in 0..3 {
                 field[e][q] += c[e + a] * proj[e][q][a];
             }
@@ -2085,10 +2128,10 @@ where
 /// Replaces `field` (values at the stretch points) by its least-squares fit among the
 /// quadratic splines ([`fit`], then [`evaluate`]).
 fn project<T, S: Copy, const K: usize>(
-    proj: &[[[S; 3]; 3]; K],
-    weights: &[S; 3],
+    proj: &[[[S; 3]; POINTS]; K],
+    weights: &[S; POINTS],
     gram: &[[S; 3]; K],
-    field: &mut [[T; 3]; K],
+    field: &mut [[T; POINTS]; K],
 ) where
     T: Copy + Default + PartialEq + core::ops::AddAssign + Sub<Output = T> + Mul<S, Output = T>,
 {
@@ -2177,40 +2220,48 @@ fn curvature_band<const K: usize>(ds: f64) -> [[f64; 4]; K] {
     band
 }
 
-/// Banded Cholesky of a symmetric positive-definite `band` of `W` diagonals (`band[i][d] =
-/// A[i][i+d]`): `L[i][i-d]` in `out[i][d]`, except the diagonal, `1 / L[i][i]` from
-/// `inverse_sqrt`; `None` when it is not positive definite (or rounding makes it seem not).
-fn cholesky<S, const K: usize, const W: usize>(
+/// Banded `L D Lᵀ` (square-root-free Cholesky) of a symmetric positive-definite `band` of
+/// `W` diagonals (`band[i][d] = A[i][i+d]`): the unit lower factor's `L[i][i-d]` in
+/// `out[i][d]`, and `1 / D[i]` from `inverse` in `out[i][0]`; `None` when it is not
+/// positive definite (or rounding makes it seem not) or `inverse` finds no `1 / D[i]` in
+/// the format.
+fn ldl<S, const K: usize, const W: usize>(
     band: &[[S; W]; K],
-    inverse_sqrt: impl Fn(S) -> S,
+    inverse: impl Fn(S) -> Option<S>,
 ) -> Option<[[S; W]; K]>
 where
     S: Copy + Default + PartialOrd + Sub<Output = S> + Mul<Output = S>,
 {
     let zero = S::default();
     let mut l = [[zero; W]; K];
+    // `L[i][j]·D[j]` for the row being factored, by `d = i − j`.
+    let mut scaled = [zero; W];
     for i in 0..K {
-        for d in (0..W).rev() {
+        for d in (1..W).rev() {
             if d > i {
                 continue;
             }
             let j = i - d;
+            // `A[i][j] − Σ over m < j of L[i][m]·D[m]·L[j][m]`, within the band.
             let mut sum = band[j][d];
-            for k in 1..W {
-                // Σ over m < j of L[i][m] L[j][m], within the band.
-                if d + k < W && k <= j {
-                    sum = sum - l[i][d + k] * l[j][k];
+            for k in 1..W - d {
+                if k <= j {
+                    sum = sum - scaled[d + k] * l[j][k];
                 }
             }
-            if d == 0 {
-                if sum.partial_cmp(&zero) != Some(core::cmp::Ordering::Greater) {
-                    return None;
-                }
-                l[i][0] = inverse_sqrt(sum);
-            } else {
-                l[i][d] = sum * l[j][0];
+            scaled[d] = sum;
+            l[i][d] = sum * l[j][0];
+        }
+        let mut pivot = band[i][0];
+        for d in 1..W {
+            if d <= i {
+                pivot = pivot - scaled[d] * l[i][d];
             }
         }
+        if pivot.partial_cmp(&zero) != Some(core::cmp::Ordering::Greater) {
+            return None;
+        }
+        l[i][0] = inverse(pivot)?;
     }
     Some(l)
 }
@@ -2257,8 +2308,13 @@ fn dense_solve<S: Scalar, const K: usize>(l: &[[S; K]; K], b: &mut [S; K]) {
     }
 }
 
-/// Solves `L Lᵀ x = b` in place, `L` from [`cholesky`] in the format with its diagonal
-/// inverted: `2·(2W − 1)·K` multiplies.
+/// `1 / x` where it is finite.
+fn finite_inverse(x: f64) -> Option<f64> {
+    Some(1.0 / x).filter(|i| i.is_finite())
+}
+
+/// Solves `L D Lᵀ x = b` in place, the factor from [`ldl`] in the format: `(2W − 1)·K`
+/// multiplies.
 fn solve<T, S, const K: usize, const W: usize>(l: &[[S; W]; K], b: &mut [T; K])
 where
     T: Copy + Sub<Output = T> + Mul<S, Output = T>,
@@ -2271,16 +2327,16 @@ where
                 s = s - b[i - d] * l[i][d];
             }
         }
-        b[i] = s * l[i][0];
+        b[i] = s;
     }
     for i in (0..K).rev() {
-        let mut s = b[i];
+        let mut s = b[i] * l[i][0];
         for d in 1..W {
             if i + d < K {
                 s = s - b[i + d] * l[i + d][d];
             }
         }
-        b[i] = s * l[i][0];
+        b[i] = s;
     }
 }
 
@@ -2488,8 +2544,7 @@ mod tests {
                     0.03 * (i as f64 * 0.7).cos(),
                 );
             }
-            let zero_v = [Vec2::default(); 8];
-            let st = r.strains(&r.pos, &zero_v);
+            let st = r.strains(&r.pos, None);
             let (_, t) = r.forces(&st, &r.external(&Default::default()), 1.0);
             let mut lin = r.linearized(&st, &t, 1.0, true);
             lin.damping = 0.0;
@@ -2499,12 +2554,8 @@ mod tests {
             let eps = 1e-7;
             let at = |sign: f64| {
                 let x: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + u[i] * (sign * eps));
-                r.forces(
-                    &r.strains(&x, &zero_v),
-                    &r.external(&Default::default()),
-                    1.0,
-                )
-                .0
+                r.forces(&r.strains(&x, None), &r.external(&Default::default()), 1.0)
+                    .0
             };
             let (plus, minus) = (at(1.0), at(-1.0));
             let w: [Vec2<f64>; 8] =
@@ -2549,8 +2600,7 @@ mod tests {
                 0.2 * (i as f64 * 0.7).cos(),
             );
         }
-        let zero_v = [Vec2::default(); 8];
-        let st = r.strains(&r.pos, &zero_v);
+        let st = r.strains(&r.pos, None);
         let (_, t) = r.forces(&st, &r.external(&Default::default()), 1.0);
         for h in [1e-3, 1.0 / 60.0, 1.0] {
             let mut lin = r.linearized(&st, &t, h, true);
@@ -2605,7 +2655,7 @@ mod tests {
         }
         let f = r
             .forces(
-                &r.strains(&r.pos, &r.vel),
+                &r.strains(&r.pos, Some(&r.vel)),
                 &r.external(&Default::default()),
                 1.0,
             )
@@ -2654,7 +2704,7 @@ mod tests {
             let h = 1e-7;
             let force_x = |r: &SplineRope<Vec2<f64>, K>| {
                 r.forces(
-                    &r.strains(&r.pos, &r.vel),
+                    &r.strains(&r.pos, Some(&r.vel)),
                     &r.external(&[Vec2::default(); K]),
                     1.0,
                 )
@@ -2737,10 +2787,9 @@ mod tests {
                 continue;
             }
             // Power iteration on -M⁻¹ ∂f/∂x by finite differences of the forces.
-            let zero_v = [Vec2::default(); 8];
             let f0 = r
                 .forces(
-                    &r.strains(&r.pos, &zero_v),
+                    &r.strains(&r.pos, None),
                     &r.external(&Default::default()),
                     1.0,
                 )
@@ -2758,7 +2807,7 @@ mod tests {
                 let moved: [Vec2<f64>; 8] = core::array::from_fn(|i| r.pos[i] + x[i] * h);
                 let f1 = r
                     .forces(
-                        &r.strains(&moved, &zero_v),
+                        &r.strains(&moved, None),
                         &r.external(&Default::default()),
                         1.0,
                     )
