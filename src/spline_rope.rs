@@ -156,9 +156,9 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// slope weights times `w·ds/2`): what a tension's pull at the point does to the
     /// differences, the quadrature taken in the table (see [`add_pull`]).
     pulls: [[[P::Scalar; 3]; POINTS]; K],
-    /// A span's length `ds`: the stretch's pulls are summed per unit of it and scaled once,
-    /// so that no product in a step grows with a span's length (in `Q16` a long span's
-    /// pull saturated).
+    /// A span's length `ds`, for the stretch energy's quadrature and the implicit step's
+    /// preconditioner. (The pulls carry theirs in `pulls`: no product in a step grows with
+    /// a span's length, where in `Q16` a long span's pull saturated.)
     ds: P::Scalar,
     /// The mass unit `m̄` the step's equations are divided by (see the [module](self)).
     unit: P::Scalar,
@@ -173,8 +173,8 @@ pub struct SplineRope<P: Point, const K: usize, I = SymplecticEuler> {
     /// Each span's Bézier extraction: Bézier point `r` is `Σ_k ext[e][r][k] · p_(e+k)`.
     ext: [[[P::Scalar; 4]; 4]; K],
     /// The strain's projection: at each span's stretch points the quadratic basis
-    /// `N̂_e..N̂_(e+2)`; the stretch points' weights in a span (`w/2`); the factor of the
-    /// Gram matrix `Σ (w/2)·N̂_a·N̂_b` (diagonal inverted, unit past `K - 2`).
+    /// `N̂_e..N̂_(e+2)`; the stretch points' weights in a span (`w/2`); the `L D Lᵀ` factor
+    /// of the Gram matrix `Σ (w/2)·N̂_a·N̂_b` (`1 / D` on the diagonal, unit past `K - 2`).
     proj: [[[P::Scalar; 3]; POINTS]; K],
     weights: [P::Scalar; POINTS],
     gram: [[P::Scalar; 3]; K],
