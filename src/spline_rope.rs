@@ -52,7 +52,8 @@
 //! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
 //! division), two banded solves and about `148·K − 380` multiplies while every span is
 //! taut (808 at `K = 8`, counted), up to a fifth more while one is slack (a third solve;
-//! the projected strain at the stretch points, which a taut rope skips); no division.
+//! the projected strain at the stretch points, which a taut rope skips); in `Q16` no
+//! division.
 //! Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes
 //! measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends 0.10 px from `f64`
 //! after 2 s); the construction (mass matrix, factors, bound) runs in `f64` and is stored
