@@ -50,10 +50,10 @@
 //! (Fine: within 2.5% of `m·g·L`; Fast: never 0.1% above the start).
 //!
 //! Cost per substep: `3·(K - 3)` inverse square roots ([`Scalar::inv_sqrt`]: in `Q16` no
-//! division), two banded solves and about `148·K − 380` multiplies while every span is
-//! taut (808 at `K = 8`, counted), up to a fifth more while one is slack (a third solve;
-//! the projected strain at the stretch points, which a taut rope skips); in `Q16` no
-//! division.
+//! division), two banded solves and about `114·(K − 3) + 34·K` multiplies while every span
+//! is taut (38 a stretch point, 34 a control point, less a few where the bands end: 805 at
+//! `K = 8`), up to a fifth more while one is slack (a third solve; the projected strain at
+//! the stretch points, which a taut rope skips); in `Q16` no division.
 //! Formats: `f32` and `f64` for any rope in [`Scalar::SAFE_RANGE`]; `Q16` for ropes
 //! measured in pixels (a 70 px rope of 7 mass units at `EA = 3000` ends 0.10 px from `f64`
 //! after 2 s); the construction (mass matrix, factors, bound) runs in `f64` and is stored
@@ -131,8 +131,9 @@ const GAUSS: [(f64, f64); 4] = [
     (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
 ];
 
-/// Stretch points a span: [`STRETCH_GAUSS`]'s. (Two, exact to degree 3, put mode 3 of a
-/// hanging rope of 8 control points 1.2% off the continuum, against 0.01% with three.)
+/// Stretch points a span: [`STRETCH_GAUSS`]'s. (Two, exact to degree 3, would save a third
+/// of a substep's products, but `tests/spline_rope.rs` then measures mode 3 of a hanging
+/// rope of 8 control points 1.2% off the continuum, against 0.015% with three.)
 const POINTS: usize = 3;
 
 /// The stretch's quadrature: 3-point Gauss-Legendre, exact for the projection's Gram matrix
