@@ -2453,6 +2453,45 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_banded_factor_solves_its_matrix() {
+        // The mass band of 8 control points (7 diagonals), its first row and column made
+        // the identity's as a pin does, and a band of 5 diagonals.
+        let (mass, _) = mass_matrix::<8>(1.3, 0.7);
+        let mut pinned = mass;
+        pinned[0] = [1.0, 0.0, 0.0, 0.0];
+        for band in [mass, pinned] {
+            let l = ldl(&band, finite_inverse).unwrap();
+            let x: [f64; 8] = core::array::from_fn(|i| (i as f64 * 1.7).sin() - 0.3);
+            let mut b = band_times(&band, &x);
+            solve(&l, &mut b);
+            for (got, want) in b.iter().zip(&x) {
+                assert!((got - want).abs() < 1e-12, "{got} against {want}");
+            }
+        }
+        let narrow: [[f64; 3]; 6] = core::array::from_fn(|i| [4.0 + i as f64, -1.0, 0.5]);
+        let l = ldl(&narrow, finite_inverse).unwrap();
+        let x = [1.0, -2.0, 0.5, 3.0, -1.0, 2.0];
+        let mut b = [0.0; 6];
+        for i in 0..6 {
+            for d in 0..3 {
+                if i + d < 6 {
+                    b[i] += narrow[i][d] * x[i + d];
+                    if d > 0 {
+                        b[i + d] += narrow[i][d] * x[i];
+                    }
+                }
+            }
+        }
+        solve(&l, &mut b);
+        for (got, want) in b.iter().zip(&x) {
+            assert!((got - want).abs() < 1e-12, "{got} against {want}");
+        }
+        // Not positive definite: no factor.
+        let indefinite: [[f64; 3]; 3] = [[1.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        assert!(ldl(&indefinite, finite_inverse).is_none());
+    }
+
+    #[test]
     fn the_basis_is_a_partition_of_unity_with_matching_slopes() {
         for k in [4usize, 5, 8, 12] {
             for step in 0..=40 {
