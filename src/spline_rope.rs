@@ -2179,13 +2179,13 @@ fn extraction(e: usize, k: usize) -> [[f64; 4]; 4] {
 }
 
 /// `A·u` for a symmetric `band` (`band[i][d] = A[i][i+d]`).
-fn band_times<T, S: Copy, const K: usize>(band: &[[S; 4]; K], u: &[T; K]) -> [T; K]
+fn band_times<T, S: Copy, const K: usize, const W: usize>(band: &[[S; W]; K], u: &[T; K]) -> [T; K]
 where
     T: Copy + Default + core::ops::AddAssign + Mul<S, Output = T>,
 {
     let mut out = [T::default(); K];
     for i in 0..K {
-        for d in 0..4 {
+        for d in 0..W {
             let j = i + d;
             if j < K {
                 let a = band[i][d];
@@ -2310,7 +2310,8 @@ fn dense_solve<S: Scalar, const K: usize>(l: &[[S; K]; K], b: &mut [S; K]) {
     }
 }
 
-/// `1 / x` where it is finite.
+/// `1 / x` where it is finite (the construction's `f64`, which need not be a [`Scalar`]:
+/// a `Q16`-only build has no float math).
 fn finite_inverse(x: f64) -> Option<f64> {
     Some(1.0 / x).filter(|i| i.is_finite())
 }
@@ -2471,17 +2472,7 @@ mod tests {
         let narrow: [[f64; 3]; 6] = core::array::from_fn(|i| [4.0 + i as f64, -1.0, 0.5]);
         let l = ldl(&narrow, finite_inverse).unwrap();
         let x = [1.0, -2.0, 0.5, 3.0, -1.0, 2.0];
-        let mut b = [0.0; 6];
-        for i in 0..6 {
-            for d in 0..3 {
-                if i + d < 6 {
-                    b[i] += narrow[i][d] * x[i + d];
-                    if d > 0 {
-                        b[i + d] += narrow[i][d] * x[i];
-                    }
-                }
-            }
-        }
+        let mut b = band_times(&narrow, &x);
         solve(&l, &mut b);
         for (got, want) in b.iter().zip(&x) {
             assert!((got - want).abs() < 1e-12, "{got} against {want}");
