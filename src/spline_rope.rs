@@ -718,7 +718,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 out.inv[e][q] = inv;
                 strain[e][q].x = square * inv - P::Scalar::ONE;
                 if let Some(dv) = &dv {
-                    strain[e][q].y = d.dot(slope_at(weights, dv, e)) * inv;
+                    // The small factor on the right (in `Q16` the cheaper product).
+                    strain[e][q].y = inv * d.dot(slope_at(weights, dv, e));
                 }
             }
         }
@@ -790,8 +791,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let mut pull = [P::default(); K];
         for e in 0..K - 3 {
             for (q, d) in self.pulls[e].iter().enumerate() {
-                // Minus the energy's gradient: the stretch pulls the rope together.
-                let g = st.slope[e][q] * -(tension[e][q] * st.inv[e][q]);
+                // Minus the energy's gradient: the stretch pulls the rope together (the
+                // tension, mostly small, on the right).
+                let g = st.slope[e][q] * -(st.inv[e][q] * tension[e][q]);
                 add_pull(&mut pull, d, e, g);
             }
         }
