@@ -718,7 +718,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 out.inv[e][q] = inv;
                 strain[e][q].x = square * inv - P::Scalar::ONE;
                 if let Some(dv) = &dv {
-                    // The small factor on the right (in `Q16` the cheaper product).
+                    // The factor more often within ±½ on the right: in `Q16` the cheaper product.
                     strain[e][q].y = inv * d.dot(slope_at(weights, dv, e));
                 }
             }
@@ -792,7 +792,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         for e in 0..K - 3 {
             for (q, d) in self.pulls[e].iter().enumerate() {
                 // Minus the energy's gradient: the stretch pulls the rope together (the
-                // tension, mostly small, on the right).
+                // tension, more often within ±½, on the right: in `Q16` the cheaper product).
                 let g = st.slope[e][q] * -(st.inv[e][q] * tension[e][q]);
                 add_pull(&mut pull, d, e, g);
             }
