@@ -127,11 +127,11 @@ pub(crate) fn mul_wide(a: i32, b: i32) -> Q16 {
 
 /// The same product from 16-bit halves and 32-bit multiplies, for cores without a 64-bit
 /// multiplier (a Cortex-M0 would call a ~40-instruction library routine for `i64 * i64`).
-/// A factor `b` within `±½` (a basis weight, a step length: most of a spline rope's
-/// products) takes two multiplies; otherwise, when `|a|·|b|` is below about `2³¹` (a
-/// product within ±16384 or so) the sum cannot leave 32 bits and is taken there; otherwise
-/// in 64 bits, saturated as [`mul_wide`] does. Bit-identical to the 64-bit form (tested on
-/// edge cases and 600 000 random pairs).
+/// A factor `b` within `±½` (a basis weight, a step length) takes two multiplies;
+/// otherwise, when `|a|·|b|` is below about `2³¹` (a product within ±16384 or so) the sum
+/// cannot leave 32 bits and is taken there; otherwise in 64 bits, saturated as
+/// [`mul_wide`] does. Bit-identical to the 64-bit form (tested on edge cases and 600 000
+/// random pairs).
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline]
 pub(crate) fn mul_halves(a: i32, b: i32) -> Q16 {
