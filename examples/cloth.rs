@@ -101,7 +101,7 @@ fn parse_args() -> Result<Args, String> {
 fn sail<const U: usize, const V: usize>(
     wind_speed: f32,
     phase: f32,
-) -> (Cloth<Vec3<f32>, U, V>, SailWind<f32, U>) {
+) -> (Cloth<Vec3<f32>, U, V>, SailWind<f32>) {
     let settings = Settings {
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 0.3,
@@ -265,7 +265,7 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
 /// camera, metres) and its heading's yaw.
 struct Boat {
     sail: Cloth<Vec3<f32>, 8, 8>,
-    wind: SailWind<f32, 8>,
+    wind: SailWind<f32>,
     at: [f32; 2],
     yaw: f32,
 }

@@ -29,7 +29,7 @@ const DRAWN: usize = 16;
 /// The sail, its wind, its two tables and what it draws.
 struct Boat<S: Scalar> {
     sail: Cloth<Vec3<S>, GRID, GRID>,
-    wind: SailWind<S, GRID>,
+    wind: SailWind<S>,
     table: SurfaceTable<S, GRID, DRAWN>,
     positions: [Vec3<S>; DRAWN * DRAWN],
     normals: [Vec3<S>; DRAWN * DRAWN],

@@ -224,32 +224,76 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 
     /// Pushes the drawn curve of a row of particles out of every collider (see the module
-    /// docs); particle contacts when [`Touch::Particles`].
+    /// docs); particle contacts when [`Touch::Particles`]. `joined[i]` says whether particle
+    /// `i` is still joined to particle `i + 1` (`joined[K - 1]`: the last to the first, a
+    /// loop's closing spring). A row that came apart is tested piece by piece, each piece's
+    /// own curve as [`Rope::draw`](crate::Rope::draw) draws it (a lone particle as a point),
+    /// so no curve bridges a cut.
     pub(crate) fn resolve_curve<const K: usize>(
         &self,
         pos: &mut [P; K],
         vel: &mut [P; K],
         inv_mass: &[P::Scalar; K],
-        (h, lag): (P::Scalar, P::Scalar),
+        times: (P::Scalar, P::Scalar),
+        joined: &[bool; K],
     ) {
         if self.colliders.is_empty() {
             return;
         }
-        type Build<P, const K: usize> = fn(Smoothing, &[P; K]) -> Result<Smoothed<P, K>, Error>;
-        let (smoothing, build): (Smoothing, Build<P, K>) = match self.touch {
-            Touch::Drawn(s) => (s, Smoothed::open),
-            Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, Smoothed::ring),
-            _ => return self.resolve_particles(pos, vel, inv_mass, (h, lag)),
+        let (smoothing, closed) = match self.touch {
+            Touch::Drawn(s) => (s, false),
+            Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, true),
+            _ => return self.resolve_particles(pos, vel, inv_mass, times),
         };
-        let Ok(curve) = build(smoothing, pos) else {
+        let whole = joined[..K - 1].iter().all(|&j| j);
+        if whole && (!closed || joined[K - 1]) {
+            let curve = if closed {
+                Smoothed::ring(smoothing, pos)
+            } else {
+                Smoothed::open(smoothing, pos)
+            };
+            if let Ok(curve) = curve {
+                let mut drawn = Rebuilt {
+                    curve,
+                    smoothing,
+                    closed,
+                    len: K,
+                };
+                self.resolve_spans(pos, vel, inv_mass, times, &mut drawn);
+            }
             return;
-        };
-        let mut drawn = Rebuilt {
-            curve,
-            smoothing,
-            build,
-        };
-        self.resolve_spans(pos, vel, inv_mass, (h, lag), &mut drawn);
+        }
+        let mut start = 0;
+        while start < K {
+            let mut end = start + 1;
+            while end < K && joined[end - 1] {
+                end += 1;
+            }
+            let (run, m) = (start..end, end - start);
+            start = end;
+            if m == 1 {
+                let (p, v, w) = (&mut pos[run.clone()], &mut vel[run.clone()], &inv_mass[run]);
+                self.resolve_particles(p, v, w, times);
+                continue;
+            }
+            // The piece, padded with its last particle (weight 0, held: nothing moves it).
+            let mut piece = ([pos[end - 1]; K], [P::default(); K], [P::Scalar::ZERO; K]);
+            piece.0[..m].copy_from_slice(&pos[run.clone()]);
+            piece.1[..m].copy_from_slice(&vel[run.clone()]);
+            piece.2[..m].copy_from_slice(&inv_mass[run.clone()]);
+            let Ok(curve) = Smoothed::open_first(smoothing, &piece.0, m) else {
+                continue;
+            };
+            let mut drawn = Rebuilt {
+                curve,
+                smoothing,
+                closed: false,
+                len: m,
+            };
+            self.resolve_spans(&mut piece.0, &mut piece.1, &piece.2, times, &mut drawn);
+            pos[run.clone()].copy_from_slice(&piece.0[..m]);
+            vel[run].copy_from_slice(&piece.1[..m]);
+        }
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
@@ -431,11 +475,13 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn rebuild(&mut self, pos: &[P; K]) -> bool;
 }
 
-/// A [`Smoothed`] curve with what rebuilds it.
+/// A [`Smoothed`] curve with what rebuilds it: a ring, or the open curve through the first
+/// `len` control points.
 struct Rebuilt<P: Point, const K: usize> {
     curve: Smoothed<P, K>,
     smoothing: Smoothing,
-    build: fn(Smoothing, &[P; K]) -> Result<Smoothed<P, K>, Error>,
+    closed: bool,
+    len: usize,
 }
 
 impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
@@ -455,7 +501,12 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
         self.curve.weights(span, t, weights);
     }
     fn rebuild(&mut self, pos: &[P; K]) -> bool {
-        match (self.build)(self.smoothing, pos) {
+        let curve = match (self.closed, self.len == K) {
+            (true, _) => Smoothed::ring(self.smoothing, pos),
+            (false, true) => Smoothed::open(self.smoothing, pos),
+            (false, false) => Smoothed::open_first(self.smoothing, pos, self.len),
+        };
+        match curve {
             Ok(c) => {
                 self.curve = c;
                 true

@@ -58,6 +58,12 @@ pub enum Error {
         /// The particle.
         index: usize,
     },
+    /// The call draws one curve through the whole rope, and the rope has come apart: draw
+    /// its pieces with [`Rope::draw`](crate::Rope::draw).
+    Cut {
+        /// How many pieces the rope is in.
+        pieces: usize,
+    },
 }
 
 impl fmt::Display for Error {
@@ -89,6 +95,10 @@ impl fmt::Display for Error {
                 "the springs are too stiff for the substep limit in this format; nothing changed",
             ),
             Error::Pinned { index } => write!(f, "particle {index} is pinned"),
+            Error::Cut { pieces } => write!(
+                f,
+                "the rope is cut into {pieces} pieces: draw it with Rope::draw, one curve a piece"
+            ),
         }
     }
 }

@@ -17,6 +17,9 @@ pub struct Bodies<'a, P: Point> {
     pub vel: &'a [P],
     /// Inverse masses (0 for pinned particles).
     pub inv_mass: &'a [P::Scalar],
+    /// Particles a row of the layout, row by row in `pos`: a cloth's `U`; a rope's every
+    /// particle (one row).
+    pub columns: usize,
 }
 
 /// Where a force field adds its forces: turns a force on particle `i` into acceleration.
@@ -187,8 +190,9 @@ impl<P: Point> ForceField<P> for Wind<P> {
     }
 }
 
-/// Wind that fills a sail: the air's pressure on every facet of a grid of particles with `U`
-/// columns (the layout of [`Cloth`](crate::Cloth)), plus the [`Wind`]'s own linear drag on
+/// Wind that fills a sail: the air's pressure on every facet of the grid of particles it
+/// blows on (the layout of [`Cloth`](crate::Cloth), read from [`Bodies::columns`], so it
+/// fits any sail), plus the [`Wind`]'s own linear drag on
 /// each particle.
 ///
 /// For a facet (the quad between particles `(i, j)` and `(i+1, j+1)`) with vector area `A`
@@ -213,7 +217,7 @@ impl<P: Point> ForceField<P> for Wind<P> {
 /// sail.pin_row(5)?; // the foot, on the boom
 /// let mut air = Wind::still(0.0);
 /// air.velocity = Vec3::new(0.0, 0.0, 8.0);
-/// let mut wind = SailWind::<f32, 6>::new(air, 0.7)?;
+/// let mut wind = SailWind::new(air, 0.7)?;
 /// for _ in 0..120 {
 ///     sail.step_with(1.0 / 60.0, &mut wind)?;
 /// }
@@ -221,22 +225,18 @@ impl<P: Point> ForceField<P> for Wind<P> {
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SailWind<S: Scalar, const U: usize> {
+pub struct SailWind<S: Scalar> {
     air: Wind<Vec3<S>>,
     pressure: S,
 }
 
-impl<S: Scalar, const U: usize> SailWind<S, U> {
-    /// Wind `air` on a sail of `U` columns, with `pressure` (`½ ρ C`, see the type's docs).
+impl<S: Scalar> SailWind<S> {
+    /// Wind `air` on a sail, with `pressure` (`½ ρ C`, see the type's docs).
     ///
     /// # Errors
     /// [`Error::NonFinite`] when a field of `air` or `pressure` is NaN or infinite;
-    /// [`Error::InvalidParameter`] for a negative `pressure`, drag or gust length, or
-    /// `U < 2`.
+    /// [`Error::InvalidParameter`] for a negative `pressure`, drag or gust length.
     pub fn new(air: Wind<Vec3<S>>, pressure: S) -> Result<Self, Error> {
-        if U < 2 {
-            return Err(Error::InvalidParameter);
-        }
         let mut wind = SailWind {
             air: Wind::still(S::ZERO),
             pressure: check_non_negative(pressure)?,
@@ -272,20 +272,21 @@ impl<S: Scalar, const U: usize> SailWind<S, U> {
     }
 }
 
-impl<S: Scalar, const U: usize> ForceField<Vec3<S>> for SailWind<S, U> {
+impl<S: Scalar> ForceField<Vec3<S>> for SailWind<S> {
     fn apply(&mut self, t: S, bodies: &Bodies<'_, Vec3<S>>, out: &mut Accelerations<'_, Vec3<S>>) {
         self.air.apply(t, bodies, out);
         let wind = self.air.at(t);
         let (pos, vel) = (bodies.pos, bodies.vel);
         let (half, quarter) = (S::ratio(1, 2), S::ratio(1, 4));
-        let rows = pos.len().min(vel.len()) / U;
+        let u = bodies.columns;
+        let rows = pos.len().min(vel.len()).checked_div(u).unwrap_or(0);
         for j in 0..rows.saturating_sub(1) {
-            for i in 0..U - 1 {
+            for i in 0..u.saturating_sub(1) {
                 let corners = [
-                    j * U + i,
-                    j * U + i + 1,
-                    (j + 1) * U + i,
-                    (j + 1) * U + i + 1,
+                    j * u + i,
+                    j * u + i + 1,
+                    (j + 1) * u + i,
+                    (j + 1) * u + i + 1,
                 ];
                 let [a, b, c, d] = corners;
                 let area = (pos[d] - pos[a]).cross(pos[c] - pos[b]) * half;
@@ -406,11 +407,12 @@ mod tests {
         let mut acc = [Vec3::default(); 9];
         let mut air = Wind::still(0.0);
         air.velocity = wind;
-        let mut sail = SailWind::<f64, 3>::new(air, 0.7).unwrap();
+        let mut sail = SailWind::new(air, 0.7).unwrap();
         let bodies = Bodies {
             pos: &pos,
             vel: &vel,
             inv_mass: &inv_mass,
+            columns: 3,
         };
         let mut out = Accelerations {
             acc: &mut acc,
@@ -442,9 +444,9 @@ mod tests {
     #[test]
     fn bad_sail_wind_is_an_error() {
         let mut air = Wind::still(0.0f32);
-        assert!(SailWind::<f32, 4>::new(air, -1.0).is_err());
-        assert!(SailWind::<f32, 4>::new(air, f32::NAN).is_err());
-        let mut sail = SailWind::<f32, 4>::new(air, 0.7).unwrap();
+        assert!(SailWind::<f32>::new(air, -1.0).is_err());
+        assert!(SailWind::<f32>::new(air, f32::NAN).is_err());
+        let mut sail = SailWind::<f32>::new(air, 0.7).unwrap();
         air.velocity.y = f32::NAN;
         assert_eq!(sail.set_air(air), Err(Error::NonFinite));
         air.velocity.y = 0.0;
@@ -479,6 +481,7 @@ mod tests {
             pos: &pos,
             vel: &vel,
             inv_mass: &inv,
+            columns: 2,
         };
         let mut acc = [Vec2::default(); 2];
         let mut out = Accelerations {

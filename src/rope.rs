@@ -223,27 +223,37 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
+        let springs = self.system.topology();
+        let joined: [bool; N] = core::array::from_fn(|i| springs.joins(i, (i + 1) % N));
         self.system
             .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
-                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times)
+                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times, &joined)
             })
     }
 
-    /// Draws the rope: the curve that `smoothing` makes of the particles, sampled into `out`
-    /// with the format's default sampler, and returns the count (see
+    /// Draws the whole rope: the curve that `smoothing` makes of the particles, sampled into
+    /// `out` with the format's default sampler, and returns the count (see
     /// [`Smoothed::sample`](smooth::Smoothed::sample): `(N-1)·s + 1` points for the splines
-    /// and the polyline, `s` segments a span). The one way to draw a rope; the first and last
-    /// points are the end particles. For another sampler, build the curve with
-    /// [`Smoothed::open`](smooth::Smoothed::open) from [`positions`](MassSpring::positions).
+    /// and the polyline, `s` segments a span); the first and last points are the end
+    /// particles. A rope that can snap or be cut is drawn with [`draw`](Rope::draw), one
+    /// curve a piece (the same points while it is whole). For another sampler, build the
+    /// curve with [`Smoothed::open`](smooth::Smoothed::open) from
+    /// [`positions`](MassSpring::positions).
     ///
     /// # Errors
-    /// [`Error::BufferTooSmall`] when `out` holds fewer than `N` points for the splines and
-    /// the polyline, or 2 for one Bézier.
+    /// [`Error::Cut`] once a chain spring has snapped or been cut (one curve would bridge
+    /// the gap); [`Error::BufferTooSmall`] when `out` holds fewer than `N` points for the
+    /// splines and the polyline, or 2 for one Bézier. Nothing is written on an error.
     pub fn sample(&self, smoothing: Smoothing, out: &mut [P]) -> Result<usize, Error> {
+        let pieces = self.pieces().count();
+        if pieces > 1 {
+            return Err(Error::Cut { pieces });
+        }
         smooth::Smoothed::open(smoothing, self.system.position_array())?.sample(out)
     }
 
-    /// Length of the drawn curve within `accuracy`.
+    /// Length of the drawn curve within `accuracy`: the pieces' lengths added once the rope
+    /// is cut (each piece's curve as [`draw`](Rope::draw) draws it).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a non-positive accuracy; [`Error::OutOfRange`] when
@@ -254,8 +264,13 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         accuracy: P::Scalar,
     ) -> Result<P::Scalar, Error> {
         check_positive(accuracy)?;
-        let length =
-            smooth::Smoothed::open(smoothing, self.system.position_array())?.length(accuracy);
+        let positions = self.system.position_array();
+        let mut length = P::Scalar::ZERO;
+        for run in self.pieces().filter(|run| run.len() > 1) {
+            let mut row = [positions[run.start]; N];
+            row[..run.len()].copy_from_slice(&positions[run.clone()]);
+            length += smooth::Smoothed::open_first(smoothing, &row, run.len())?.length(accuracy);
+        }
         if length.is_finite() {
             Ok(length)
         } else {

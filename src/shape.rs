@@ -9,6 +9,8 @@
 pub trait Shape {
     /// Number of particles.
     const LEN: usize;
+    /// Particles a row: a grid's `U`, every particle of a line (one row).
+    const COLUMNS: usize;
     /// One `T` per particle.
     type PerParticle<T: Copy>: Copy;
     /// An array with every element `value`.
@@ -30,6 +32,7 @@ pub struct Grid<const U: usize, const V: usize>;
 
 impl<const N: usize> Shape for Line<N> {
     const LEN: usize = N;
+    const COLUMNS: usize = N;
     type PerParticle<T: Copy> = [T; N];
     #[inline]
     fn filled<T: Copy>(value: T) -> [T; N] {
@@ -47,6 +50,7 @@ impl<const N: usize> Shape for Line<N> {
 
 impl<const U: usize, const V: usize> Shape for Grid<U, V> {
     const LEN: usize = U * V;
+    const COLUMNS: usize = U;
     type PerParticle<T: Copy> = [[T; U]; V];
     #[inline]
     fn filled<T: Copy>(value: T) -> [[T; U]; V] {

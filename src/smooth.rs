@@ -74,6 +74,21 @@ impl Smoothing {
         t: S,
         weights: &mut [S; K],
     ) {
+        self.row_weights(closed, K, span, t, weights);
+    }
+
+    /// [`weights`](Self::weights) of the curve through the first `n` of the `K` particles
+    /// (`2 ≤ n ≤ K`; a piece of a broken rope): the later particles weigh 0. One Bézier
+    /// repeats the `n`-th particle up to degree `K - 1`, as [`Smoothed`] builds it.
+    pub(crate) fn row_weights<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        n: usize,
+        span: usize,
+        t: S,
+        weights: &mut [S; K],
+    ) {
+        let len = if closed { K } else { n.clamp(2.min(K), K) };
         let t = crate::curve::clamp_unit(t);
         let zero = S::ZERO;
         let (t2, sixth, half) = (t * t, S::ratio(1, 6), S::ratio(1, 2));
@@ -82,12 +97,15 @@ impl Smoothing {
         let local = match self {
             Smoothing::Bezier => {
                 crate::sampler::bernstein_weights(t, weights);
+                let repeated: S = weights[len..].iter().fold(zero, |sum, &w| sum + w);
+                weights[len - 1] += repeated;
+                weights[len..].fill(zero);
                 return;
             }
             Smoothing::Polyline => [zero, S::ONE - t, t, zero],
             Smoothing::NaturalSpline => {
-                Smoothing::BSpline.weights(closed, span, t, weights);
-                return natural_weights(weights, closed);
+                Smoothing::BSpline.row_weights(closed, len, span, t, weights);
+                return natural_weights(weights, closed, len);
             }
             Smoothing::BSpline => {
                 let s = S::ONE - t;
@@ -105,7 +123,7 @@ impl Smoothing {
                 (t3 - t2) * half,
             ],
         };
-        fold(local, closed, span, weights);
+        fold(local, closed, span, len, weights);
     }
 
     /// The derivatives `d/dt` of [`weights`](Self::weights) at the same point: the particle
@@ -137,7 +155,7 @@ impl Smoothing {
             Smoothing::Polyline => [zero, -S::ONE, S::ONE, zero],
             Smoothing::NaturalSpline => {
                 Smoothing::BSpline.slopes(closed, span, t, slopes);
-                return natural_weights(slopes, closed);
+                return natural_weights(slopes, closed, K);
             }
             Smoothing::BSpline => {
                 let s = S::ONE - t;
@@ -155,28 +173,35 @@ impl Smoothing {
                 (n(3) * t2 - n(2) * t) * half,
             ],
         };
-        fold(local, closed, span, slopes);
+        fold(local, closed, span, K, slopes);
     }
 }
 
-/// Writes the local weights of particles `span-1 ..= span+2` of a spline over `K` particles
-/// into `weights` (zero elsewhere), `span` clamped to the last: open ends reflect a phantom
-/// particle through the end one (`2·p0 - p1`), as the spans were built; a closed curve wraps.
-fn fold<S: Scalar, const K: usize>(local: [S; 4], closed: bool, span: usize, weights: &mut [S; K]) {
+/// Writes the local weights of particles `span-1 ..= span+2` of a spline over the first `n`
+/// of `K` particles (`2 ≤ n ≤ K`; all `K` when `closed`) into `weights` (zero elsewhere),
+/// `span` clamped to the last: open ends reflect a phantom particle through the end one
+/// (`2·p0 - p1`), as the spans were built; a closed curve wraps.
+fn fold<S: Scalar, const K: usize>(
+    local: [S; 4],
+    closed: bool,
+    span: usize,
+    n: usize,
+    weights: &mut [S; K],
+) {
     *weights = [S::ZERO; K];
-    let spans = if closed { K } else { K.saturating_sub(1) };
+    let spans = if closed { K } else { n.saturating_sub(1) };
     let span = span.min(spans.saturating_sub(1));
     for (k, w) in local.into_iter().enumerate() {
         let i = span as isize + k as isize - 1;
-        let last = K as isize - 1;
+        let last = n as isize - 1;
         if closed {
             weights[i.rem_euclid(K as isize) as usize] += w;
         } else if i < 0 {
             weights[0] += w + w;
             weights[1] -= w;
         } else if i > last {
-            weights[K - 1] += w + w;
-            weights[K - 2] -= w;
+            weights[n - 1] += w + w;
+            weights[n - 2] -= w;
         } else {
             weights[i as usize] += w;
         }
@@ -191,6 +216,8 @@ fn fold<S: Scalar, const K: usize>(local: [S; 4], closed: bool, span: usize, wei
 pub struct Smoothed<P, const K: usize> {
     pieces: Pieces<P, K>,
     method: Smoothing,
+    /// The particles it is drawn through: the first `len` of the `K`.
+    len: usize,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -226,11 +253,16 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             }
             Smoothing::Polyline => Pieces::Straight(segments(particles, K), K - 1),
         };
-        Ok(Smoothed { pieces, method })
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: K,
+        })
     }
 
     /// The open curve through the first `n` particles (`2 ≤ n ≤ K`, clamped): a piece of a
-    /// broken rope. One Bézier repeats the `n`-th particle up to degree `K - 1`.
+    /// broken rope. One Bézier repeats the `n`-th particle up to degree `K - 1`. Its
+    /// [`weights`](Self::weights) are those of the piece (0 past its `n` particles).
     pub(crate) fn open_first(
         method: Smoothing,
         particles: &[P; K],
@@ -252,7 +284,11 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             }
             Smoothing::Polyline => Pieces::Straight(segments(&row, n), n - 1),
         };
-        Ok(Smoothed { pieces, method })
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: n,
+        })
     }
 
     /// The closed curve through a ring of particles (a loop topology): `K` spans, wrapping
@@ -319,7 +355,11 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
                 K,
             ),
         };
-        Ok(Smoothed { pieces, method })
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: K,
+        })
     }
 
     /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
@@ -414,7 +454,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     /// particles through these weights.
     pub fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
         let closed = self.span_count() == K;
-        self.method.weights(closed, span, t, weights);
+        self.method.row_weights(closed, self.len, span, t, weights);
     }
 
     /// Length of the curve within `accuracy` (see [`Bezier::arclen`]), shared between the
@@ -472,13 +512,16 @@ fn natural_open<P: Point, const K: usize>(points: &mut [P; K], n: usize) {
 
 /// The particle weights of a natural spline from the B-spline weights `w` of its control
 /// points (see [`natural_controls`]): the transpose of that map, `w - Δ²(A⁻¹·w)`, since the
-/// tridiagonal `A` and the second difference `Δ²` are both symmetric.
-fn natural_weights<S: Scalar, const K: usize>(w: &mut [S; K], closed: bool) {
+/// tridiagonal `A` and the second difference `Δ²` are both symmetric. An open curve through
+/// the first `n` particles has `w` zero past them, and so has the result.
+fn natural_weights<S: Scalar, const K: usize>(w: &mut [S; K], closed: bool, n: usize) {
     let mut y = *w;
-    if !closed {
-        (y[0], y[K - 1]) = (S::ZERO, S::ZERO);
+    if closed {
+        solve_tridiagonal(&mut y, true);
+    } else {
+        (y[0], y[n - 1]) = (S::ZERO, S::ZERO);
+        solve_open::<S, S, K>(&mut y, n);
     }
-    solve_tridiagonal(&mut y, closed);
     for (w, d) in w.iter_mut().zip(curvature(&y, closed)) {
         *w -= d;
     }

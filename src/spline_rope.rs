@@ -1550,6 +1550,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 pos: &self.pos,
                 vel: &self.vel,
                 inv_mass: &self.inv_load,
+                columns: K,
             };
             field.apply(self.time, &bodies, &mut out);
             saturated |= out.saturated;

@@ -980,7 +980,7 @@ fn apply_cloth<S: Scalar>(cloth: &mut Sail<S>, call: &ClothCall) -> Result<(), E
         } => {
             let mut air = Wind::still(s(*drag));
             air.velocity = v(*wind);
-            let sail = SailWind::<S, 5>::new(air, s(*pressure))?;
+            let sail = SailWind::<S>::new(air, s(*pressure))?;
             cloth.step_with(s(*dt), sail).map(drop)
         }
         ClothCall::Touch(touching) => {

@@ -331,3 +331,158 @@ fn any_integrator_runs_every_method() {
         assert!(rope.positions()[7].y < -1.0, "{integrator:?} fell");
     }
 }
+
+/// A rope held by a hand moving in a circle, swinging onto a floor it touches with its drawn
+/// B-spline, cut at its middle after 2 s: neither before nor after the cut does any drawn
+/// point of any piece go into the floor by more than half the rope's thickness (the
+/// contacts used to keep one curve bridging the cut, while the drawn pieces sank through).
+fn cut_rope_on_a_floor<S: Scalar>() -> (u32, f64) {
+    let v = |x: f64, y: f64| Vec2::new(S::from_f64(x), S::from_f64(y));
+    let hand = |t: f64| {
+        let a = core::f64::consts::TAU * t / 2.0;
+        v(0.4 * a.cos(), 0.5 + 0.4 * a.sin())
+    };
+    let settings = Settings {
+        gravity: v(0.0, -9.81),
+        damping: S::from_f64(0.1),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: S::from_f64(500.0),
+        damping: S::ONE,
+    };
+    let mut rope: Rope<Vec2<S>, 8> = Rope::new(
+        hand(0.0),
+        hand(0.0) + v(0.0, -2.3),
+        S::from_f64(0.5),
+        material,
+        settings,
+    )
+    .unwrap();
+    let (floor, thickness) = (-2.0, 0.02);
+    let ground = [Collider::half_space(v(0.0, floor), v(0.0, 1.0))
+        .unwrap()
+        .with_friction(S::from_f64(0.5), S::from_f64(0.4))
+        .unwrap()];
+    let contacts = Contacts::new(
+        &ground,
+        S::from_f64(thickness),
+        Touch::Drawn(Smoothing::BSpline),
+    )
+    .unwrap();
+    let dt = S::from_f64(1.0 / 60.0);
+    let (mut points, mut pieces) = ([v(0.0, 0.0); 64], [dunas::breaking::Piece::EMPTY; 8]);
+    let (mut sunk, mut deepest) = (0, 0.0f64);
+    for frame in 1..=240 {
+        rope.move_pinned(0, hand(frame as f64 / 60.0), dt).unwrap();
+        rope.step_touching(dt, (), &contacts).unwrap();
+        let count = rope
+            .draw(Smoothing::BSpline, &mut points, &mut pieces)
+            .unwrap();
+        let drawn = &points[..pieces[count - 1].points.end];
+        let lowest = drawn.iter().map(|p| p.y.to_f64()).fold(f64::MAX, f64::min);
+        if lowest < floor - thickness / 2.0 {
+            sunk += 1;
+        }
+        deepest = deepest.max(floor - lowest);
+        if frame == 120 {
+            // A swipe across the middle of the drawn rope.
+            let mid = drawn[drawn.len() / 2];
+            let cut = rope
+                .cut(
+                    &points,
+                    &pieces[..count],
+                    mid + v(-1.0, 0.0),
+                    mid + v(1.0, 0.0),
+                )
+                .unwrap();
+            assert!(cut.is_some(), "the swipe cuts the rope");
+            assert_eq!(rope.pieces().count(), 2);
+        }
+    }
+    (sunk, deepest)
+}
+
+#[test]
+fn a_cut_ropes_pieces_stay_on_the_floor() {
+    let (sunk, deepest) = cut_rope_on_a_floor::<f32>();
+    assert_eq!(sunk, 0, "f32: drawn pieces {deepest} m into the floor");
+    let (sunk, deepest) = cut_rope_on_a_floor::<Q16>();
+    assert_eq!(sunk, 0, "Q16: drawn pieces {deepest} m into the floor");
+}
+
+/// `sample` draws one curve through every particle: on a cut rope it refuses, naming the
+/// pieces and pointing at `draw`, instead of bridging the cut.
+#[test]
+fn sample_refuses_a_cut_rope() {
+    let mut rope = hanging_rope(1.0);
+    let mut points = [Vec2::default(); 64];
+    assert_eq!(rope.sample(Smoothing::BSpline, &mut points), Ok(64));
+    let mut pieces = [dunas::breaking::Piece::EMPTY; 8];
+    rope.draw(Smoothing::BSpline, &mut points, &mut pieces)
+        .unwrap();
+    let cut = rope
+        .cut(
+            &points,
+            &pieces[..1],
+            Vec2::new(3.2, 1.0),
+            Vec2::new(3.2, -1.0),
+        )
+        .unwrap();
+    assert_eq!(cut, Some(3));
+    let before = points;
+    assert_eq!(
+        rope.sample(Smoothing::BSpline, &mut points),
+        Err(Error::Cut { pieces: 2 })
+    );
+    assert_eq!(points, before, "a refused call writes nothing");
+    assert!(Error::Cut { pieces: 2 }.to_string().contains("draw"));
+    // The drawn length is the pieces' lengths added, without the gap between them.
+    let whole = 7.0;
+    let length = rope.drawn_length(Smoothing::Polyline, 1e-6).unwrap();
+    assert!((length - 6.0).abs() < 1e-9, "{length} of {whole}");
+}
+
+/// `SailWind` reads the sail's layout from the system it blows on: the total force on a flat
+/// 8×8 sail square to the wind is the closed form `½ρC · w² · area` (it used to take the
+/// column count as a type parameter, and a wrong one ran silently on the wrong facets).
+#[test]
+fn sail_wind_fits_the_sail_it_blows_on() {
+    use dunas::force::{SailWind, Wind};
+    let settings = Settings {
+        gravity: Vec3::new(0.0, 0.0, 0.0),
+        damping: 0.0,
+        ..Settings::default()
+    };
+    let m = Material {
+        stiffness: 2000.0,
+        damping: 1.0,
+    };
+    // 3 m by 4 m in the x-y plane, the wind along z at 8 m/s, ½ρC = 0.7.
+    let mut sail: Cloth<Vec3<f64>, 8, 8> = Cloth::rectangle(
+        Vec3::new(0.0, 4.0, 0.0),
+        Vec3::new(3.0, 0.0, 0.0),
+        Vec3::new(0.0, -4.0, 0.0),
+        2.0,
+        [m, m, m],
+        settings,
+    )
+    .unwrap();
+    let mut air = Wind::still(0.0);
+    air.velocity = Vec3::new(0.0, 0.0, 8.0);
+    let mut wind = SailWind::new(air, 0.7).unwrap();
+    let dt = 1e-4;
+    sail.step_with(dt, &mut wind).unwrap();
+    let momentum: f64 = sail
+        .velocities()
+        .iter()
+        .zip(sail.inv_masses())
+        .map(|(v, w)| v.z / w)
+        .sum();
+    let expected = 0.7 * 64.0 * 12.0;
+    assert!(
+        (momentum / dt / expected - 1.0).abs() < 1e-3,
+        "{} N against {expected} N",
+        momentum / dt
+    );
+}

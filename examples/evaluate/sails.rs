@@ -87,7 +87,7 @@ fn sail<S: Scalar, const U: usize>(scene: Scene) -> Cloth<Vec3<S>, U, U> {
     c
 }
 
-fn wind<S: Scalar, const U: usize>(scene: Scene) -> SailWind<S, U> {
+fn wind<S: Scalar>(scene: Scene) -> SailWind<S> {
     let mut air = Wind::still(S::ZERO);
     air.velocity = Vec3::new(S::ZERO, S::ZERO, s(WIND));
     let pressure = if scene == Scene::Wind { PRESSURE } else { 0.0 };
@@ -97,7 +97,7 @@ fn wind<S: Scalar, const U: usize>(scene: Scene) -> SailWind<S, U> {
 /// The sail after its scene's seconds at time step `dt`.
 fn settled<const U: usize>(scene: Scene, dt: f64) -> Cloth<Vec3<f64>, U, U> {
     let mut c = sail::<f64, U>(scene);
-    let mut w = wind::<f64, U>(scene);
+    let mut w = wind::<f64>(scene);
     for _ in 0..(scene.seconds() / dt).round() as usize {
         c.step_with(dt, &mut w).expect("stable");
     }
@@ -202,7 +202,7 @@ fn drawn<const U: usize>(
 /// built once per count, as a game caches them). The raw grid is drawn as its particles.
 fn frame_ns<const U: usize>(run: &Run, scene: Scene, smoothing: Smoothing) -> f64 {
     let mut c = sail::<f32, U>(scene);
-    let mut w = wind::<f32, U>(scene);
+    let mut w = wind::<f32>(scene);
     for _ in 0..(scene.seconds() / DT) as usize {
         c.step_with(DT as f32, &mut w).expect("stable");
     }
@@ -303,7 +303,7 @@ fn fleet_ns(run: &Run) -> (f64, f64) {
     let mut sails: Vec<(Cloth<Vec3<f32>, 8, 8>, f32)> = (0..BOATS)
         .map(|k| {
             let mut c = sail::<f32, 8>(Scene::Wind);
-            let mut w = wind::<f32, 8>(Scene::Wind);
+            let mut w = wind::<f32>(Scene::Wind);
             for _ in 0..(k % 30) {
                 c.step_with(DT as f32, &mut w).expect("stable");
             }
@@ -312,7 +312,7 @@ fn fleet_ns(run: &Run) -> (f64, f64) {
             (c, TOLERANCE as f32 * distance / 20.0)
         })
         .collect();
-    let mut w = wind::<f32, 8>(Scene::Wind);
+    let mut w = wind::<f32>(Scene::Wind);
     let mut tables: HashMap<usize, SurfaceTable<f32, 8, MAX_DRAWN>> = HashMap::new();
     let (mut pos, mut nor) = (
         vec![Vec3::<f32>::default(); MAX_DRAWN * MAX_DRAWN],
@@ -340,7 +340,7 @@ fn fleet_ns(run: &Run) -> (f64, f64) {
 /// Nanoseconds of the 8×8 sail's f32 step in wind, and of drawing it 24×24 with normals.
 fn step_and_draw24(run: &Run) -> (f64, f64) {
     let mut c = sail::<f32, 8>(Scene::Wind);
-    let mut w = wind::<f32, 8>(Scene::Wind);
+    let mut w = wind::<f32>(Scene::Wind);
     for _ in 0..(Scene::Wind.seconds() / DT) as usize {
         c.step_with(DT as f32, &mut w).expect("stable");
     }

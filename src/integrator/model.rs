@@ -117,6 +117,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
             pos: x,
             vel: v,
             inv_mass: w,
+            columns: Sh::COLUMNS,
         };
         let mut out = Accelerations {
             acc,
