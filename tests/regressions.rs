@@ -486,3 +486,48 @@ fn sail_wind_fits_the_sail_it_blows_on() {
         momentum / dt
     );
 }
+
+/// A `Q16` rope held far past what its springs can pull (their forces saturate) comes back
+/// once the hand does: within 40 s every particle is within 2 px of a rope that only ever
+/// hung there, and no step is refused on the way (it used to swing thousands of pixels out
+/// for good, gaining energy from its clamped forces).
+#[test]
+fn a_q16_rope_yanked_past_the_format_comes_back() {
+    let q = Q16::from_f64;
+    let rope = || -> Rope<Vec2<Q16>, 10> {
+        let settings = Settings {
+            gravity: Vec2::new(q(0.0), q(-150.0)),
+            damping: q(0.3),
+            ..Settings::default()
+        };
+        let material = Material {
+            stiffness: q(300.0),
+            damping: Q16::ONE,
+        };
+        let (start, end) = (Vec2::new(q(0.0), q(0.0)), Vec2::new(q(90.0), q(0.0)));
+        Rope::new(start, end, q(2.0), material, settings).unwrap()
+    };
+    let dt = Q16::ratio(1, 60);
+    let origin = Vec2::new(q(0.0), q(0.0));
+    let mut hung = rope();
+    for _ in 0..2400 {
+        hung.step(dt).unwrap();
+    }
+    for far in [1500.0, 3000.0] {
+        let mut yanked = rope();
+        let mut saturated = 0;
+        for _ in 0..600 {
+            yanked.set_position(0, Vec2::new(q(far), q(-far))).unwrap();
+            saturated += u32::from(yanked.step(dt).unwrap().saturated);
+        }
+        assert!(saturated > 0, "the hand at {far} px saturates the springs");
+        for _ in 0..2400 {
+            yanked.set_position(0, origin).unwrap();
+            let _ = yanked.step(dt).unwrap();
+        }
+        for (p, r) in yanked.positions().iter().zip(hung.positions()) {
+            let off = (*p - *r).length().to_f64();
+            assert!(off < 2.0, "held at {far} px: {off} px from the rest shape");
+        }
+    }
+}
