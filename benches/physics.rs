@@ -52,7 +52,7 @@ fn rope<const N: usize, const CAP: usize>(
     .unwrap();
     r.set_inv_mass(N - 1, 0.25).unwrap();
     for _ in 0..20 {
-        r.step(1.0 / 60.0).unwrap();
+        let _ = r.step(1.0 / 60.0).unwrap();
     }
     r
 }
@@ -81,7 +81,7 @@ fn cloth<const U: usize, const V: usize>(
     .unwrap();
     c.pin_row(0).unwrap();
     for _ in 0..20 {
-        c.step(1.0 / 60.0).unwrap();
+        let _ = c.step(1.0 / 60.0).unwrap();
     }
     c
 }
@@ -128,23 +128,23 @@ fn frames(c: &mut Criterion) {
     let mut out = [Vec2::<f32>::default(); 64];
     let r8 = rope::<8, 7>(AnyIntegrator::SymplecticEuler);
     bench_on(&mut g, "rope8_bspline64", &r8, |r| {
-        r.step_once(h, ()).unwrap();
+        let _ = r.step_once(h, ()).unwrap();
         r.sample(Smoothing::BSpline, &mut out).unwrap()
     });
     let table = BernsteinTable::<f32, 8, 64>::new();
     bench_on(&mut g, "rope8_bezier_table64", &r8, |r| {
-        r.step_once(h, ()).unwrap();
+        let _ = r.step_once(h, ()).unwrap();
         table
             .sample(&Bezier::new(*r.position_array()).unwrap(), &mut out)
             .unwrap()
     });
     bench_on(&mut g, "rope8_bezier_decasteljau64", &r8, |r| {
-        r.step_once(h, ()).unwrap();
+        let _ = r.step_once(h, ()).unwrap();
         r.sample(Smoothing::Bezier, &mut out).unwrap()
     });
     let r30 = rope::<30, 29>(AnyIntegrator::SymplecticEuler);
     bench_on(&mut g, "rope30_polyline64", &r30, |r| {
-        r.step_once(h, ()).unwrap();
+        let _ = r.step_once(h, ()).unwrap();
         r.sample(Smoothing::Polyline, &mut out).unwrap()
     });
     g.finish();
@@ -275,14 +275,14 @@ fn spline_rope(c: &mut Criterion) {
     )
     .unwrap();
     for _ in 0..20 {
-        r.step(1.0 / 60.0).unwrap();
+        let _ = r.step(1.0 / 60.0).unwrap();
     }
     let mut out = [Vec2::<f32>::default(); 64];
     let mut g = c.benchmark_group("spline_rope");
     bench_on(&mut g, "substep8", &r, |r| r.step_once(1.0 / 240.0));
     bench_on(&mut g, "sample64", &r, |r| r.sample(&mut out));
     bench_on(&mut g, "frame8_sample64", &r, |r| {
-        r.step(1.0 / 60.0).unwrap();
+        let _ = r.step(1.0 / 60.0).unwrap();
         r.sample(&mut out).unwrap()
     });
     let mut implicit: SplineRope<Vec2<f32>, 8, ImplicitEuler> = SplineRope::new(
@@ -294,10 +294,10 @@ fn spline_rope(c: &mut Criterion) {
     )
     .unwrap();
     for _ in 0..20 {
-        implicit.step(1.0 / 60.0).unwrap();
+        let _ = implicit.step(1.0 / 60.0).unwrap();
     }
     bench_on(&mut g, "implicit_frame8_sample64", &implicit, |r| {
-        r.step(1.0 / 60.0).unwrap();
+        let _ = r.step(1.0 / 60.0).unwrap();
         r.sample(&mut out).unwrap()
     });
     g.finish();

@@ -24,7 +24,7 @@ const W: usize = 72;
 const H: usize = 20;
 
 fn status(game: &Catapult) -> String {
-    match game.penguin {
+    let line = match game.penguin {
         Penguin::Swinging => format!(" t = {:4.1} s   whirling...", game.time()),
         Penguin::Flying(body) => format!(
             " t = {:4.1} s   flying at {:.1} m/s",
@@ -39,6 +39,12 @@ fn status(game: &Catapult) -> String {
             launch.y,
             landing_x(from, launch, -9.81)
         ),
+    };
+    match game.slow_frames {
+        0 => line,
+        n => {
+            format!("{line}   (slow motion in {n} frames: the rope is too stiff for its substeps)")
+        }
     }
 }
 

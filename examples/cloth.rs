@@ -368,20 +368,25 @@ fn main() {
         args.boats
     );
     let mut last = Vec::new();
+    // Steps that hit the substep cap (slow motion), shown after the table.
+    let mut slow = 0u32;
     for frame in 0..args.frames {
         let (mut t_small, mut t_big) = (0.0, 0.0);
         for _ in 0..STEPS_PER_FRAME {
             let t = Instant::now();
-            small
+            let info = small
                 .step_touching(STEP, &mut small_wind, &on_surface)
                 .expect("the sail stays stable");
+            slow += u32::from(info.slow_motion);
             small
                 .draw(full, full, &mut pos, &mut nor)
                 .expect("buffers hold the grid");
             t_small += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            big.step_touching(STEP, &mut big_wind, &on_particles)
+            let info = big
+                .step_touching(STEP, &mut big_wind, &on_particles)
                 .expect("the sail stays stable");
+            slow += u32::from(info.slow_motion);
             t_big += t.elapsed().as_secs_f64();
         }
         let time = frame as f32 * STEPS_PER_FRAME as f32 * STEP;
@@ -410,9 +415,11 @@ fn main() {
         for boat in &mut boats {
             let t = Instant::now();
             for _ in 0..STEPS_PER_FRAME {
-                boat.sail
+                let info = boat
+                    .sail
                     .step_with(STEP, &mut boat.wind)
                     .expect("the sail stays stable");
+                slow += u32::from(info.slow_motion);
             }
             stepping += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -448,6 +455,11 @@ fn main() {
         );
         pair.push(draw_fleet(2 * w, h, &boats, &drawn, time));
         last = pair;
+    }
+    if slow > 0 {
+        println!(
+            "slow motion: {slow} steps hit the substep cap and simulated less than their time"
+        );
     }
     if let Some(png) = &args.png {
         // The contact sheet: the two sails shaded and in wireframe, the fleet below.

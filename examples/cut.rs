@@ -98,7 +98,13 @@ impl Game {
                 self.swipe = Some((from, to));
             }
         }
-        self.rope.step(STEP).expect("the rope stays stable");
+        let info = self.rope.step(STEP).expect("the rope stays stable");
+        if info.slow_motion {
+            eprintln!(
+                "t = {:.2} s: slow motion (the substep cap was hit)",
+                self.time
+            );
+        }
         for i in 0..9 {
             let p = self.rope.positions()[i];
             if p.y < MOUTH[1] && self.rope.inv_masses()[i] > 0.0 {

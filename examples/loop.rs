@@ -48,8 +48,15 @@ fn main() {
     let mut curve = [Vec2::default(); 61];
     for (frame, until) in [0.3f32, 0.8, 1.6].into_iter().enumerate() {
         while hoop.time() < until - 1e-3 {
-            hoop.step_with(1.0 / 60.0, &mut wind)
+            let info = hoop
+                .step_with(1.0 / 60.0, &mut wind)
                 .expect("the hoop stays stable");
+            if info.slow_motion {
+                eprintln!(
+                    "t = {:.2} s: slow motion (the substep cap was hit)",
+                    hoop.time()
+                );
+            }
         }
         let n = Smoothed::closed(Smoothing::BSpline, hoop.position_array())
             .and_then(|c| c.sample(&mut curve))

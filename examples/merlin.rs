@@ -52,7 +52,10 @@ fn main() {
             for r in ropes.iter_mut() {
                 let t = r.time();
                 r.set_position(0, sleigh(t)).expect("in range");
-                r.step(1.0 / 60.0).expect("the rope stays stable");
+                let info = r.step(1.0 / 60.0).expect("the rope stays stable");
+                if info.slow_motion {
+                    eprintln!("t = {t:.2} s: slow motion (the substep cap was hit)");
+                }
             }
         }
         println!(

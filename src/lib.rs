@@ -28,7 +28,8 @@
 //!     let hand = Vec2::new(10.0 * frame as f32, 0.0); // where the player holds the rope
 //!     for _ in 0..clock.advance(frame_time) {
 //!         rope.set_position(0, hand)?;
-//!         rope.step(clock.step())?; // substeps chosen from the stiffness
+//!         let info = rope.step(clock.step())?; // substeps chosen from the stiffness
+//!         assert!(!info.slow_motion); // true when too stiff for the substep cap: time slows
 //!     }
 //!     let n = rope.sample(Smoothing::BSpline, &mut screen)?; // draw screen[..n]
 //!     assert_eq!(screen[0], hand);

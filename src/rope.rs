@@ -327,7 +327,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
                 self.system.with_topology(|s| s.scale_rest(factor))?;
             }
             for _ in 0..settle_steps {
-                self.system.step(dt)?;
+                let _ = self.system.step(dt)?;
             }
             drawn = self.drawn_length(smoothing, accuracy)?;
         }

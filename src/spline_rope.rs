@@ -2817,7 +2817,7 @@ mod tests {
         use crate::Vec2;
         let mut r = rope(Vec2::new(0.0, -9.81));
         for frame in 0..200 {
-            r.step(1.0 / 60.0).unwrap();
+            let _ = r.step(1.0 / 60.0).unwrap();
             if frame % 20 != 19 {
                 continue;
             }

@@ -15,8 +15,10 @@ use crate::{Error, Point, Scalar, Settings};
 
 pub use crate::substeps::MAX_SUBSTEPS;
 
-/// What a step did.
+/// What a step did. Look at it: `slow_motion` says the frame simulated less time than asked
+/// (the scene looks frozen), `saturated` that a `Q16` force was clamped.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[must_use = "`slow_motion` says the step simulated less than `dt` (springs too stiff for the substep cap); `saturated` that a Q16 force was clamped"]
 pub struct StepInfo<S> {
     /// Substeps taken.
     pub substeps: u16,
@@ -719,7 +721,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             let longest = (rest + pull / stiff) * half;
             let d = (x[b] - x[a]) * half;
             let l = d.length();
-            if !(l > longest) {
+            if l <= longest {
                 return;
             }
             let n = d * (P::Scalar::ONE / l);

@@ -30,7 +30,7 @@ fn hanging(bob: f64) -> Rope<Vec2<f64>, 8> {
     .unwrap();
     rope.hang(7, bob).unwrap();
     for _ in 0..720 {
-        rope.step(1.0 / 60.0).unwrap();
+        let _ = rope.step(1.0 / 60.0).unwrap();
     }
     rope
 }
@@ -192,7 +192,7 @@ fn a_swipe_cuts_where_the_rope_was_drawn() {
         Rope::new(Vec2::new(-3.0, 0.0), Vec2::new(3.0, 0.0), 1.0, m, settings).unwrap();
     rope.set_inv_mass(3, 0.0).unwrap();
     for _ in 0..300 {
-        rope.step(1.0 / 60.0).unwrap();
+        let _ = rope.step(1.0 / 60.0).unwrap();
     }
     let (mut points, mut pieces) = ([Vec2::default(); 31], [Piece::EMPTY; 4]);
     rope.draw(Smoothing::NaturalSpline, &mut points, &mut pieces)
@@ -418,8 +418,8 @@ fn a_rope_welded_to_a_cloth_keeps_momentum() {
         }
     };
     for _ in 0..240 {
-        sheet.step(1.0 / 60.0).unwrap();
-        rope.step(1.0 / 60.0).unwrap();
+        let _ = sheet.step(1.0 / 60.0).unwrap();
+        let _ = rope.step(1.0 / 60.0).unwrap();
         let before = momentum(sheet.inv_masses(), sheet.velocities(), 24)
             + momentum(rope.inv_masses(), rope.velocities(), 0);
         rope.weld(0, &mut sheet, 24).unwrap();
@@ -468,7 +468,7 @@ fn a_swipe_tears_a_cloth() {
     // 6 structural + 2·5 shear + 6 bending from row 1 and 6 from row 2.
     assert_eq!(torn, 6 + 10 + 12);
     for _ in 0..60 {
-        c.step(1.0 / 60.0).unwrap();
+        let _ = c.step(1.0 / 60.0).unwrap();
     }
     assert!(
         c.positions()[3 * 6].y < -1.5 - 2.0,

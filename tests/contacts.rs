@@ -98,7 +98,7 @@ fn a_rope_on_a_slope_sticks_below_atan_mu_and_slides_above() {
             .unwrap()];
         let contacts = Contacts::new(&slope, 0.01, Touch::Particles).unwrap();
         for _ in 0..120 {
-            rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+            let _ = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
         }
         let moved = (rope.positions()[0] - start).dot(down);
         // Sliding for 2 s at g(sin θ - μ cos θ) from rest covers half that times 2².
@@ -148,7 +148,7 @@ fn restitution_zero_adds_no_energy() {
         let contacts = Contacts::new(&ground, 0.02, touch).unwrap();
         let e0 = rope.energy();
         for _ in 0..300 {
-            rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+            let _ = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
             assert!(rope.energy() <= e0 + 1e-9 * e0.abs(), "{touch:?}");
         }
     }
@@ -197,7 +197,7 @@ fn ball_on_rope(gravity: f64, pinned: bool, frames: usize) -> Vec<[Vec2<f64>; 3]
         let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))
             .unwrap()
             .with_impulses(&mut impulses);
-        rope.step_touching(dt, (), &contacts).unwrap();
+        let _ = rope.step_touching(dt, (), &contacts).unwrap();
         velocity += impulses[0] * (1.0 / mass) + Vec2::new(0.0, -gravity * dt);
         let rope_momentum = rope
             .velocities()
@@ -277,7 +277,7 @@ fn a_cloth_draped_over_a_sphere_stays_outside_it() {
             .unwrap()];
         let contacts = Contacts::new(&ball, 0.0, touch).unwrap();
         for _ in 0..180 {
-            sheet.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+            let _ = sheet.step_touching(1.0 / 60.0, (), &contacts).unwrap();
         }
         // The surface as drawn: 33 × 33 samples, the middle one at u = v = 1/2.
         let smoothing = match touch {
@@ -346,7 +346,7 @@ fn a_hoop_hangs_on_a_nail_through_its_closing_span() {
     let nail = [Collider::ball(centre, radius).unwrap()];
     let contacts = Contacts::new(&nail, 0.0, Touch::DrawnLoop(Smoothing::BSpline)).unwrap();
     for _ in 0..240 {
-        hoop.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+        let _ = hoop.step_touching(1.0 / 60.0, (), &contacts).unwrap();
     }
     let mut curve = vec![Vec2::default(); 12 * 64 + 1];
     let n = Smoothed::closed(Smoothing::BSpline, hoop.position_array())

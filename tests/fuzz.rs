@@ -12,6 +12,7 @@
 //! the fixed-step clock.
 #![cfg(all(feature = "std", feature = "fixed"))]
 
+use dunas::Point;
 use dunas::breaking::Piece;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};

@@ -35,7 +35,7 @@ fn hanging_rope(damping: f64) -> Rope<Vec2<f64>, 8> {
 fn a_refused_calibration_leaves_the_rope_as_it_was() {
     let mut rope = hanging_rope(1.0);
     for _ in 0..30 {
-        rope.step(1.0 / 60.0).unwrap();
+        let _ = rope.step(1.0 / 60.0).unwrap();
     }
     let before = (
         rope.positions().to_vec(),
@@ -66,7 +66,7 @@ fn a_refused_calibration_leaves_the_rope_as_it_was() {
     assert_eq!(rope.positions(), &before.0[..]);
     assert_eq!(rope.topology().as_slice(), &before.1[..]);
     // And the rope still steps.
-    rope.step(1.0 / 60.0).unwrap();
+    let _ = rope.step(1.0 / 60.0).unwrap();
 }
 
 #[test]
@@ -141,7 +141,7 @@ fn settings_are_checked_on_entry() {
         assert!(system.set_settings(settings).is_err(), "{settings:?}");
         assert_eq!(system.settings(), &good, "the old settings stay");
     }
-    system.step(1.0 / 60.0).unwrap();
+    let _ = system.step(1.0 / 60.0).unwrap();
 }
 
 #[test]
@@ -231,7 +231,7 @@ fn q16_saturation_reaches_the_caller() {
         let x = (frame as f64 * 0.5).powi(2).min(16_000.0);
         exact.set_position(0, Vec2::new(x, 0.0)).unwrap();
         fixed.set_position(0, Vec2::from_f64(x, 0.0)).unwrap();
-        exact.step(1.0 / 60.0).unwrap();
+        let _ = exact.step(1.0 / 60.0).unwrap();
         let info = fixed.step(Q16::from_f64(1.0 / 60.0)).unwrap();
         if info.saturated {
             saturated_at = Some(frame);
@@ -326,7 +326,7 @@ fn any_integrator_runs_every_method() {
         )
         .unwrap();
         for _ in 0..60 {
-            rope.step(1.0 / 60.0).unwrap();
+            let _ = rope.step(1.0 / 60.0).unwrap();
         }
         assert!(rope.positions()[7].y < -1.0, "{integrator:?} fell");
     }
@@ -375,7 +375,7 @@ fn cut_rope_on_a_floor<S: Scalar>() -> (u32, f64) {
     let (mut sunk, mut deepest) = (0, 0.0f64);
     for frame in 1..=240 {
         rope.move_pinned(0, hand(frame as f64 / 60.0), dt).unwrap();
-        rope.step_touching(dt, (), &contacts).unwrap();
+        let _ = rope.step_touching(dt, (), &contacts).unwrap();
         let count = rope
             .draw(Smoothing::BSpline, &mut points, &mut pieces)
             .unwrap();
@@ -472,7 +472,7 @@ fn sail_wind_fits_the_sail_it_blows_on() {
     air.velocity = Vec3::new(0.0, 0.0, 8.0);
     let mut wind = SailWind::new(air, 0.7).unwrap();
     let dt = 1e-4;
-    sail.step_with(dt, &mut wind).unwrap();
+    let _ = sail.step_with(dt, &mut wind).unwrap();
     let momentum: f64 = sail
         .velocities()
         .iter()
@@ -511,7 +511,7 @@ fn a_q16_rope_yanked_past_the_format_comes_back() {
     let origin = Vec2::new(q(0.0), q(0.0));
     let mut hung = rope();
     for _ in 0..2400 {
-        hung.step(dt).unwrap();
+        let _ = hung.step(dt).unwrap();
     }
     for far in [1500.0, 3000.0] {
         let mut yanked = rope();

@@ -40,6 +40,8 @@ pub struct Catapult {
     pub released: Option<(Vec2<f32>, Vec2<f32>)>,
     trail: Vec<Vec2<f32>>,
     time: f32,
+    /// Frames whose step hit the substep cap and simulated less than the frame.
+    pub slow_frames: u32,
 }
 
 impl Catapult {
@@ -68,6 +70,7 @@ impl Catapult {
             released: None,
             trail: Vec::new(),
             time: 0.0,
+            slow_frames: 0,
         }
     }
 
@@ -89,7 +92,8 @@ impl Catapult {
         self.rope
             .move_pinned(0, Self::hand(self.time), STEP)
             .expect("the hand stays in range");
-        self.rope.step(STEP).expect("the rope stays stable");
+        let info = self.rope.step(STEP).expect("the rope stays stable");
+        self.slow_frames += u32::from(info.slow_motion);
         match self.penguin {
             Penguin::Swinging => {
                 let v = self.rope.velocities()[7];

@@ -110,6 +110,8 @@ pub struct Scene {
     colliders: [Collider<Vec2<f32>>; 3],
     /// Cost per frame of each rope: physics step plus the points it draws.
     pub costs: [Cost; 3],
+    /// Whether each rope's last step ran in slow motion (its substep cap was hit).
+    slow: [bool; 3],
     held_at: Vec2<f32>,
 }
 
@@ -123,6 +125,7 @@ impl Scene {
             wind: gust(),
             colliders: colliders(),
             costs: Default::default(),
+            slow: [false; 3],
             held_at: Self::hand(0.0),
         }
     }
@@ -158,7 +161,8 @@ impl Scene {
             touch(Touch::Particles),
         );
         let t = Instant::now();
-        self.smooth8
+        let smooth8 = self
+            .smooth8
             .step_touching(dt, &mut self.wind, &curve)
             .expect("the rope stays stable");
         self.smooth8
@@ -166,15 +170,18 @@ impl Scene {
             .expect("the curve buffer holds 2 points or more");
         self.costs[0].add(t.elapsed());
         let t = Instant::now();
-        self.raw8
+        let raw8 = self
+            .raw8
             .step_touching(dt, &mut self.wind, &particles)
             .expect("the rope stays stable");
         self.costs[1].add(t.elapsed());
         let t = Instant::now();
-        self.raw30
+        let raw30 = self
+            .raw30
             .step_touching(dt, &mut self.wind, &particles)
             .expect("the rope stays stable");
         self.costs[2].add(t.elapsed());
+        self.slow = [smooth8, raw8, raw30].map(|info| info.slow_motion);
     }
 
     /// Where the hand held the ropes during the last step.
@@ -218,11 +225,16 @@ impl Scene {
             }
         }
         if costs {
-            let cell = |c: &Cost| format!("{:>8.0} ns/frame", c.ns());
+            // A rope whose substep cap was hit simulates less than the frame: say so.
+            let cell = |c: &Cost, slow: bool| {
+                let note = if slow { " SLOW MOTION" } else { "" };
+                format!("{:>8.0} ns/frame{note}", c.ns())
+            };
             let cells: Vec<String> = self
                 .costs
                 .iter()
-                .map(|c| format!("{:<w$}", cell(c), w = PANEL_W))
+                .zip(self.slow)
+                .map(|(c, slow)| format!("{:<w$}", cell(c, slow), w = PANEL_W))
                 .collect();
             lines.push(cells.join(" "));
         }

@@ -69,7 +69,7 @@ fn settled<const N: usize>(
     let contacts = Contacts::new(colliders, 0.0, touch).expect("valid contacts");
     let ns = median_ns(reps, 20, || {
         let mut r = rope.clone();
-        r.step_touching(1.0 / 60.0, (), &contacts).expect("a step");
+        let _ = r.step_touching(1.0 / 60.0, (), &contacts).expect("a step");
         std::hint::black_box(&r);
     });
     (rope, ns)
@@ -146,7 +146,7 @@ pub fn run(run: &mut Run) {
         let rope: Rope<Vec2<f32>, 8> = draped_rope(&[], Touch::Particles, SETTLE_FRAMES);
         median_ns(reps, 20, || {
             let mut r = rope.clone();
-            r.step(1.0 / 60.0).expect("a step");
+            let _ = r.step(1.0 / 60.0).expect("a step");
             std::hint::black_box(&r);
         })
     };

@@ -61,7 +61,7 @@ fn timed_period<const N: usize, const CAP: usize>(
         sys,
         steps,
         |s| {
-            s.step(dt).expect("stable");
+            let _ = s.step(dt).expect("stable");
         },
         probe,
     );
@@ -93,7 +93,7 @@ fn oscillator(integrator: AnyIntegrator, h: f64) -> (f64, f64) {
         &mut sys,
         steps,
         |s| {
-            s.step_once(h, ()).expect("stable");
+            let _ = s.step_once(h, ()).expect("stable");
         },
         |s| s.positions()[1].x - 10.0,
     );
@@ -206,7 +206,7 @@ fn energy_swing(integrator: AnyIntegrator, accuracy: Accuracy) -> (f64, f64) {
         &mut rope,
         180,
         |r| {
-            r.step(1.0 / 60.0).expect("stable");
+            let _ = r.step(1.0 / 60.0).expect("stable");
         },
         |r| r.energy(),
     );

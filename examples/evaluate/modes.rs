@@ -89,7 +89,7 @@ fn spline_mode<const K: usize>(n: usize) -> f64 {
     )
     .expect("a valid rope");
     for _ in 0..480 {
-        rope.step(1.0 / 60.0).expect("stable");
+        let _ = rope.step(1.0 / 60.0).expect("stable");
     }
     rope.set_settings(settings(0.0)).expect("valid");
     for i in 0..K {
@@ -124,7 +124,7 @@ fn chain_mode<const N: usize>(n: usize) -> f64 {
     )
     .expect("a valid rope");
     for _ in 0..480 {
-        rope.step(1.0 / 60.0).expect("stable");
+        let _ = rope.step(1.0 / 60.0).expect("stable");
     }
     rope.set_settings(settings(0.0)).expect("valid");
     for i in 1..N {
@@ -141,7 +141,7 @@ fn chain_mode<const N: usize>(n: usize) -> f64 {
         .map(|&w| if w > 0.0 { 1.0 / w } else { 0.0 })
         .collect();
     frequency(h, J0_ZEROS[n] / 2.0 * G.sqrt(), || {
-        rope.step_once(h, ()).expect("stable");
+        let _ = rope.step_once(h, ()).expect("stable");
         rope.positions()
             .iter()
             .zip(&weights)

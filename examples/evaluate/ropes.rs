@@ -80,7 +80,7 @@ fn settle<const N: usize, const CAP: usize>(
     let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
     let steps = (seconds / DT).round() as usize;
     for _ in 0..steps {
-        r.step(DT).expect("stable");
+        let _ = r.step(DT).expect("stable");
     }
 }
 
@@ -122,7 +122,7 @@ fn frame_ns<const N: usize, const CAP: usize>(run: &Run, smoothing: Smoothing) -
     )
     .expect("valid");
     for _ in 0..10 {
-        r.step(DT as f32).expect("stable");
+        let _ = r.step(DT as f32).expect("stable");
     }
     let start = r.clone();
     let mut out = [Vec2::<f32>::default(); DRAWN];
@@ -133,7 +133,7 @@ fn frame_ns<const N: usize, const CAP: usize>(run: &Run, smoothing: Smoothing) -
         if frames % 60 == 0 {
             r = start.clone();
         }
-        r.step(DT as f32).expect("stable");
+        let _ = r.step(DT as f32).expect("stable");
         if smoothing != Smoothing::Polyline {
             std::hint::black_box(r.sample(smoothing, &mut out).expect("buffer"));
         }
@@ -219,7 +219,7 @@ fn spline_error<const K: usize, I: SplineStepper>(
     let substeps = r.clone().step(DT).map_or(0, |i| i.substeps);
     let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
     for _ in 0..(seconds / DT).round() as usize {
-        r.step(DT).expect("stable");
+        let _ = r.step(DT).expect("stable");
     }
     let mut curve = vec![Vec2::default(); DRAWN_FOR_ERROR];
     let n = r.sample(&mut curve).expect("room");
@@ -231,7 +231,7 @@ fn spline_error<const K: usize, I: SplineStepper>(
 fn spline_frame_ns<const K: usize, I: SplineStepper>(run: &Run, stepper: I) -> f64 {
     let mut fast = spline_rope::<f32, K, I>(Scene::Swing, stepper);
     for _ in 0..10 {
-        fast.step(DT as f32).expect("stable");
+        let _ = fast.step(DT as f32).expect("stable");
     }
     let start = fast.clone();
     let mut out = [Vec2::<f32>::default(); DRAWN];
@@ -241,7 +241,7 @@ fn spline_frame_ns<const K: usize, I: SplineStepper>(run: &Run, stepper: I) -> f
         if frames % 60 == 0 {
             fast = start.clone();
         }
-        fast.step(DT as f32).expect("stable");
+        let _ = fast.step(DT as f32).expect("stable");
         std::hint::black_box(fast.sample(&mut out).expect("room"));
     })
 }
@@ -446,7 +446,7 @@ fn reference_ropes() -> [Vec<Vec2<f64>>; 2] {
         // A finer step than the ropes under test, so the reference is converged in time too.
         let seconds = if scene == Scene::Rest { 6.0 } else { SWING_AT };
         for _ in 0..(seconds * 600.0).round() as usize {
-            r.step(1.0 / 600.0).expect("stable");
+            let _ = r.step(1.0 / 600.0).expect("stable");
         }
         r.positions().to_vec()
     })

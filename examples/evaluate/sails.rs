@@ -99,7 +99,7 @@ fn settled<const U: usize>(scene: Scene, dt: f64) -> Cloth<Vec3<f64>, U, U> {
     let mut c = sail::<f64, U>(scene);
     let mut w = wind::<f64>(scene);
     for _ in 0..(scene.seconds() / dt).round() as usize {
-        c.step_with(dt, &mut w).expect("stable");
+        let _ = c.step_with(dt, &mut w).expect("stable");
     }
     c
 }
@@ -204,7 +204,7 @@ fn frame_ns<const U: usize>(run: &Run, scene: Scene, smoothing: Smoothing) -> f6
     let mut c = sail::<f32, U>(scene);
     let mut w = wind::<f32>(scene);
     for _ in 0..(scene.seconds() / DT) as usize {
-        c.step_with(DT as f32, &mut w).expect("stable");
+        let _ = c.step_with(DT as f32, &mut w).expect("stable");
     }
     let mut tables: HashMap<usize, SurfaceTable<f32, U, MAX_DRAWN>> = HashMap::new();
     let (mut pos, mut nor) = (
@@ -212,7 +212,7 @@ fn frame_ns<const U: usize>(run: &Run, scene: Scene, smoothing: Smoothing) -> f6
         vec![Vec3::<f32>::default(); MAX_DRAWN * MAX_DRAWN],
     );
     median_ns(run.reps().min(11), 5, || {
-        c.step_with(DT as f32, &mut w).expect("stable");
+        let _ = c.step_with(DT as f32, &mut w).expect("stable");
         if smoothing != Smoothing::Polyline {
             let (nu, nv) = lod_counts(c.position_array(), smoothing, TOLERANCE as f32);
             for n in [nu, nv] {
@@ -305,7 +305,7 @@ fn fleet_ns(run: &Run) -> (f64, f64) {
             let mut c = sail::<f32, 8>(Scene::Wind);
             let mut w = wind::<f32>(Scene::Wind);
             for _ in 0..(k % 30) {
-                c.step_with(DT as f32, &mut w).expect("stable");
+                let _ = c.step_with(DT as f32, &mut w).expect("stable");
             }
             // At 20 m a metre is 60 px (as in the tables above); farther, proportionally less.
             let distance = 20.0 + 180.0 * k as f32 / (BOATS - 1) as f32;
@@ -323,7 +323,7 @@ fn fleet_ns(run: &Run) -> (f64, f64) {
     let ns = median_ns(run.reps().min(7), 1, || {
         frames += 1;
         for (c, tol) in &mut sails {
-            c.step_with(DT as f32, &mut w).expect("stable");
+            let _ = c.step_with(DT as f32, &mut w).expect("stable");
             let (nu, nv) = lod_counts(c.position_array(), Smoothing::NaturalSpline, *tol);
             for n in [nu, nv] {
                 tables.entry(n).or_insert_with(|| {
@@ -342,7 +342,7 @@ fn step_and_draw24(run: &Run) -> (f64, f64) {
     let mut c = sail::<f32, 8>(Scene::Wind);
     let mut w = wind::<f32>(Scene::Wind);
     for _ in 0..(Scene::Wind.seconds() / DT) as usize {
-        c.step_with(DT as f32, &mut w).expect("stable");
+        let _ = c.step_with(DT as f32, &mut w).expect("stable");
     }
     let table = SurfaceTable::<f32, 8, 24>::new(Smoothing::NaturalSpline, 24).expect("2..=N");
     let (mut pos, mut nor) = ([Vec3::<f32>::default(); 576], [Vec3::<f32>::default(); 576]);
@@ -356,7 +356,7 @@ fn step_and_draw24(run: &Run) -> (f64, f64) {
         if frames % 120 == 0 {
             c = start.clone();
         }
-        c.step_with(DT as f32, &mut w).expect("stable");
+        let _ = c.step_with(DT as f32, &mut w).expect("stable");
     });
     (step, draw)
 }

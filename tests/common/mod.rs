@@ -243,7 +243,7 @@ pub fn chain_between_pins<const N: usize, const CAP: usize>(
     .with_integrator(integrator);
     let mut sys = MassSpring::new(pos, inv, springs, settings).expect("valid chain");
     for _ in 0..steps {
-        sys.step(dt).expect("stable");
+        let _ = sys.step(dt).expect("stable");
     }
     sys
 }
@@ -331,7 +331,8 @@ pub fn draped_rope<S: Scalar, const N: usize>(
     let contacts =
         dunas::contact::Contacts::new(colliders, S::ZERO, touch).expect("valid contacts");
     for _ in 0..frames {
-        rope.step_touching(f(1.0 / 60.0), (), &contacts)
+        let _ = rope
+            .step_touching(f(1.0 / 60.0), (), &contacts)
             .expect("a step");
     }
     rope
@@ -362,7 +363,7 @@ pub fn settled_hanging_rope<S: Scalar, I: dunas::Integrator>(
     )
     .expect("a valid rope");
     for _ in 0..600 {
-        rope.step(f(1.0 / 60.0)).expect("a step");
+        let _ = rope.step(f(1.0 / 60.0)).expect("a step");
     }
     rope
 }
@@ -434,7 +435,7 @@ pub fn spline_rope_sag<const K: usize, I: dunas::spline_rope::SplineStepper>(
     }
     rope.set_pinned(K - 1, true).expect("in range");
     for _ in 0..1200 {
-        rope.step(1.0 / 60.0).expect("stable");
+        let _ = rope.step(1.0 / 60.0).expect("stable");
     }
     let mut curve = [Vec2::default(); 401];
     let n = rope.sample(&mut curve).expect("room");
@@ -475,7 +476,7 @@ pub fn cantilever_sag_exact() -> f64 {
 pub fn cantilever_sag<I: dunas::spline_rope::SplineStepper>(stepper: I) -> f64 {
     let mut beam = cantilever(stepper, 9.81);
     for _ in 0..600 {
-        beam.step(1.0 / 60.0).expect("stable");
+        let _ = beam.step(1.0 / 60.0).expect("stable");
     }
     -beam.positions()[7].y
 }
@@ -486,7 +487,7 @@ pub fn cantilever_sag<I: dunas::spline_rope::SplineStepper>(stepper: I) -> f64 {
 pub fn cantilever_first_mode() -> (f64, f64) {
     let mut beam = cantilever(dunas::integrator::SymplecticEuler, 9.81);
     for _ in 0..600 {
-        beam.step(1.0 / 60.0).expect("stable");
+        let _ = beam.step(1.0 / 60.0).expect("stable");
     }
     beam.set_settings(Settings {
         accuracy: Accuracy::Fine,
