@@ -64,6 +64,7 @@
 //! | `libm` | no | float math without `std` (exact square roots from `libm`) |
 //! | `fixed` | yes | the [`Q16`] Q16.16 format, for chips without an FPU |
 //! | `micromath` | no | fast approximate `f32` roots behind [`Scalar::approx_sqrt`] and [`Scalar::approx_inv_sqrt`] (at most 6.1% and 3.5% off, measured) |
+//! | `mint` | no | conversions between [`Vec2`]/[`Vec3`] and `mint`'s vectors and points (glam, nalgebra, cgmath) |
 //! | `xml` | no | loading the thesis's scene and physics XML files (`xml` module; needs `std`) |
 //! | `embedded-graphics` | no | drawing curves and patch wireframes into any `DrawTarget` (`graphics` module) |
 //!

@@ -1,6 +1,6 @@
 //! 2D and 3D points ([`Vec2`], [`Vec3`]) and the [`Point`] trait the geometry is written on.
 
-use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 use crate::Scalar;
 
@@ -161,37 +161,10 @@ impl<S: Scalar> Vec3<S> {
             self.x * o.y - self.y * o.x,
         )
     }
-
-    /// The unit vector in this direction, or `None` for a zero (or non-finite) vector.
-    ///
-    /// One norm and one division, to the format's rounding for any other vector: one whose
-    /// largest coordinate is below ½ or from 256 up is first scaled by powers of two (exact
-    /// in floats, so their result is unchanged), since in `Q16` a tiny vector's length has
-    /// few significant bits and a long one's saturates, and in floats the inverse of a
-    /// subnormal length overflows.
-    #[inline]
-    pub fn normalize(self) -> Option<Self> {
-        let largest = self.x.abs().max(self.y.abs()).max(self.z.abs());
-        if !(largest > S::ZERO && largest.is_finite()) {
-            return None;
-        }
-        let (mut v, mut m) = (self, largest);
-        let (up, down) = (S::from_i16(256), S::ratio(1, 256));
-        while m >= up {
-            (v, m) = (v * down, m * down);
-        }
-        while m < down {
-            (v, m) = (v * up, m * up);
-        }
-        let (two, half) = (S::from_i16(2), S::ratio(1, 2));
-        while m < half {
-            (v, m) = (v * two, m * two);
-        }
-        Some(v * (S::ONE / v.length()))
-    }
 }
 
 macro_rules! impl_ops {
+    (@scalar $f:ident) => { S };
     ($V:ident { $($f:ident),+ }, $dim:expr, [$($axis:literal => $g:ident),+]) => {
         impl<S: Scalar> Add for $V<S> {
             type Output = Self;
@@ -219,6 +192,74 @@ macro_rules! impl_ops {
             #[inline]
             fn mul(self, s: S) -> Self {
                 $V { $($f: self.$f * s),+ }
+            }
+        }
+        impl<S: Scalar> Div<S> for $V<S> {
+            type Output = Self;
+            /// Each coordinate divided by `s` (in `Q16`, saturating for a tiny `s`).
+            #[inline]
+            fn div(self, s: S) -> Self {
+                $V { $($f: self.$f / s),+ }
+            }
+        }
+        impl<S: Scalar> From<[S; $dim]> for $V<S> {
+            #[inline]
+            fn from([$($f),+]: [S; $dim]) -> Self {
+                $V { $($f),+ }
+            }
+        }
+        impl<S: Scalar> From<$V<S>> for [S; $dim] {
+            #[inline]
+            fn from(v: $V<S>) -> Self {
+                [$(v.$f),+]
+            }
+        }
+        impl<S: Scalar> From<($(impl_ops!(@scalar $f)),+)> for $V<S> {
+            #[inline]
+            fn from(($($f),+): ($(impl_ops!(@scalar $f)),+)) -> Self {
+                $V { $($f),+ }
+            }
+        }
+        impl<S: Scalar + core::fmt::Display> core::fmt::Display for $V<S> {
+            /// `(x, y)` / `(x, y, z)`, each coordinate with the formatter's precision.
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                let mut sep = "(";
+                $(
+                    f.write_str(sep)?;
+                    core::fmt::Display::fmt(&self.$f, f)?;
+                    sep = ", ";
+                )+
+                let _ = sep;
+                f.write_str(")")
+            }
+        }
+        impl<S: Scalar> $V<S> {
+            /// The unit vector in this direction, or `None` for a zero (or non-finite) vector.
+            ///
+            /// One norm and one division, to the format's rounding for any other vector: one whose
+            /// largest coordinate is below ½ or from 256 up is first scaled by powers of two (exact
+            /// in floats, so their result is unchanged), since in `Q16` a tiny vector's length has
+            /// few significant bits and a long one's saturates, and in floats the inverse of a
+            /// subnormal length overflows.
+            #[inline]
+            pub fn normalize(self) -> Option<Self> {
+                let largest = S::ZERO $(.max(self.$f.abs()))+;
+                if !(largest > S::ZERO && largest.is_finite()) {
+                    return None;
+                }
+                let (mut v, mut m) = (self, largest);
+                let (up, down) = (S::from_i16(256), S::ratio(1, 256));
+                while m >= up {
+                    (v, m) = (v * down, m * down);
+                }
+                while m < down {
+                    (v, m) = (v * up, m * up);
+                }
+                let (two, half) = (S::from_i16(2), S::ratio(1, 2));
+                while m < half {
+                    (v, m) = (v * two, m * two);
+                }
+                Some(v * (S::ONE / v.length()))
             }
         }
         impl<S: Scalar> AddAssign for $V<S> {
@@ -271,6 +312,60 @@ macro_rules! impl_ops {
 impl_ops!(Vec2 { x, y }, 2, [0 => x, 1 => y]);
 impl_ops!(Vec3 { x, y, z }, 3, [0 => x, 1 => y, 2 => z]);
 
+/// `s * v` for each format (a generic `S * Vec2<S>` cannot be written for foreign `S`).
+macro_rules! scalar_times {
+    ($($S:ty),+) => {$(
+        impl Mul<Vec2<$S>> for $S {
+            type Output = Vec2<$S>;
+            #[inline]
+            fn mul(self, v: Vec2<$S>) -> Vec2<$S> {
+                v * self
+            }
+        }
+        impl Mul<Vec3<$S>> for $S {
+            type Output = Vec3<$S>;
+            #[inline]
+            fn mul(self, v: Vec3<$S>) -> Vec3<$S> {
+                v * self
+            }
+        }
+    )+};
+}
+
+scalar_times!(f32, f64);
+
+/// Conversions to and from `mint`, which glam, nalgebra and cgmath convert to and from:
+/// `Vec2::from(glam_vec2.into())`-style bridges with no copy of the math.
+#[cfg(feature = "mint")]
+mod mint_bridge {
+    use super::{Vec2, Vec3};
+    use crate::Scalar;
+
+    macro_rules! bridge {
+        ($V:ident { $($f:ident),+ }: $M:ident) => {
+            impl<S: Scalar> From<mint::$M<S>> for $V<S> {
+                #[inline]
+                fn from(m: mint::$M<S>) -> Self {
+                    $V { $($f: m.$f),+ }
+                }
+            }
+            impl<S: Scalar> From<$V<S>> for mint::$M<S> {
+                #[inline]
+                fn from(v: $V<S>) -> Self {
+                    mint::$M { $($f: v.$f),+ }
+                }
+            }
+        };
+    }
+
+    bridge!(Vec2 { x, y }: Vector2);
+    bridge!(Vec2 { x, y }: Point2);
+    bridge!(Vec3 { x, y, z }: Vector3);
+    bridge!(Vec3 { x, y, z }: Point3);
+}
+#[cfg(feature = "fixed")]
+scalar_times!(crate::Q16);
+
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
@@ -286,6 +381,34 @@ mod tests {
         assert_eq!(a.coord(2), 0.0);
         assert_eq!(Vec2::new(3.0f32, 4.0).length(), 5.0);
         assert_eq!(a.min_coords(b), Vec2::new(1.0, -1.0));
+    }
+
+    #[test]
+    fn operators_and_conversions() {
+        let a = Vec2::new(3.0f32, 4.0);
+        assert_eq!(a / 2.0, Vec2::new(1.5, 2.0));
+        assert_eq!(2.0 * a, a * 2.0);
+        assert_eq!(Vec2::from([3.0, 4.0]), a);
+        assert_eq!(Vec2::from((3.0, 4.0)), a);
+        assert_eq!(<[f32; 2]>::from(a), [3.0, 4.0]);
+        assert_eq!(a.normalize(), Some(Vec2::new(0.6, 0.8)));
+        assert_eq!(Vec2::<f32>::default().normalize(), None);
+        assert_eq!(std::format!("{a:.1}"), "(3.0, 4.0)");
+        assert_eq!(std::format!("{}", Vec3::new(1.0f64, 2.0, 3.0)), "(1, 2, 3)");
+        assert_eq!(Vec3::from((1.0, 2.0, 3.0)), Vec3::from([1.0, 2.0, 3.0]));
+        #[cfg(feature = "mint")]
+        {
+            let m: mint::Vector2<f32> = a.into();
+            assert_eq!((m.x, m.y), (3.0, 4.0));
+            assert_eq!(
+                Vec3::from(mint::Point3 {
+                    x: 1.0,
+                    y: 2.0,
+                    z: 3.0
+                }),
+                Vec3::new(1.0, 2.0, 3.0)
+            );
+        }
     }
 
     #[test]

@@ -32,6 +32,13 @@ use crate::Scalar;
 /// let a = Q16::from_f64(1.5);
 /// assert_eq!((a * a).to_f64(), 2.25);
 /// assert!(!(Q16::from_f64(30000.0) * a).is_finite()); // saturated, and says so
+///
+/// const DT: Q16 = Q16::ratio(1, 60); // constants, of either sign
+/// const GRAVITY: Q16 = Q16::ratio(-981, 100);
+/// const LIMIT: Q16 = Q16::from_int(100);
+/// assert_eq!(DT.to_bits(), 1092);
+/// assert_eq!(GRAVITY.to_f64(), -9.81000518798828125);
+/// assert_eq!(LIMIT.max(DT), LIMIT); // no ambiguity between Ord and Scalar
 /// ```
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[repr(transparent)]
@@ -53,6 +60,51 @@ impl Q16 {
     #[inline]
     pub const fn to_bits(self) -> i32 {
         self.0.to_bits()
+    }
+
+    /// `n` as a `Q16`, in `const` context: `const LIMIT: Q16 = Q16::from_int(100);`.
+    #[inline]
+    pub const fn from_int(n: i16) -> Q16 {
+        Q16::from_bits((n as i32) << 16)
+    }
+
+    /// `num / den` rounded to nearest (halves away from zero), saturated at the range, in
+    /// `const` context and for either sign: `const DT: Q16 = Q16::ratio(1, 60);`,
+    /// `Q16::ratio(-981, 100)`. A zero `den` gives 0. (This inherent `ratio` takes signed
+    /// numbers; generic code calls [`Scalar::ratio`], which takes unsigned ones.)
+    #[inline]
+    pub const fn ratio(num: i32, den: i32) -> Q16 {
+        if den == 0 {
+            return Q16::from_bits(0);
+        }
+        let negative = (num < 0) != (den < 0);
+        let (n, d) = (
+            (num as i64).unsigned_abs() << 16,
+            (den as i64).unsigned_abs(),
+        );
+        let q = ((n + d / 2) / d) as i64;
+        Q16::saturate(if negative { -q } else { q })
+    }
+
+    /// The larger of two values. (Inherent, so `a.max(b)` is not ambiguous between
+    /// [`Ord::max`] and [`Scalar::max`]; all three agree.)
+    #[inline]
+    pub const fn max(self, other: Q16) -> Q16 {
+        if self.to_bits() >= other.to_bits() {
+            self
+        } else {
+            other
+        }
+    }
+
+    /// The smaller of two values (inherent, as [`max`](Self::max)).
+    #[inline]
+    pub const fn min(self, other: Q16) -> Q16 {
+        if self.to_bits() <= other.to_bits() {
+            self
+        } else {
+            other
+        }
     }
 
     #[inline]
@@ -602,7 +654,19 @@ mod tests {
         assert_eq!(Q16::ratio(3, 8), q(0.375));
         assert_eq!(Q16::ratio(1, 3).to_bits(), 21845);
         assert_eq!(Q16::ratio(1, 0), Q16::ZERO);
-        assert_eq!(Q16::ratio(u32::MAX, 1), Q16::MAX);
+        assert_eq!(<Q16 as Scalar>::ratio(u32::MAX, 1), Q16::MAX);
+        // The inherent, signed `ratio` agrees with the unsigned one and mirrors it.
+        for (n, d) in [(1, 60), (981, 100), (7, 3), (65535, 65536), (32767, 1)] {
+            let unsigned = <Q16 as Scalar>::ratio(n as u32, d as u32);
+            assert_eq!(Q16::ratio(n, d), unsigned);
+            assert_eq!(Q16::ratio(-n, d), -unsigned);
+            assert_eq!(Q16::ratio(n, -d), -unsigned);
+        }
+        assert_eq!(Q16::ratio(i32::MAX, 1), Q16::MAX);
+        assert_eq!(Q16::ratio(i32::MIN, 1), Q16::MIN);
+        assert_eq!(Q16::from_int(-3), q(-3.0));
+        assert_eq!(q(2.0).max(q(-1.0)), q(2.0));
+        assert_eq!(q(2.0).min(q(-1.0)), q(-1.0));
     }
 
     #[test]
