@@ -27,13 +27,13 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use embedded_graphics::Pixel as ColoredPixel;
 use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::geometry::{Dimensions, Point as Pixel};
 use embedded_graphics::pixelcolor::PixelColor;
 use embedded_graphics::primitives::{
     Line, PointsIter, Primitive, PrimitiveStyle, Rectangle, StyledDimensions, StyledDrawable,
 };
-use embedded_graphics::{Drawable, Pixel as ColoredPixel};
 
 use crate::Point;
 use crate::ascii::View;
@@ -96,6 +96,9 @@ fn stroke<D: DrawTarget>(
     let Some(mut from) = pixels.next() else {
         return Ok(());
     };
+    if width > 1 {
+        return wide(target, style, from, pixels);
+    }
     let mut first = true;
     for to in pixels {
         if to == from {
@@ -103,8 +106,6 @@ fn stroke<D: DrawTarget>(
         }
         if width == 1 {
             thin_segment(target, (from, to), (!first || skip_ends, skip_ends), color)?;
-        } else if width > 1 {
-            Line::new(from, to).into_styled(*style).draw(target)?;
         }
         (from, first) = (to, false);
     }
@@ -115,11 +116,82 @@ fn stroke<D: DrawTarget>(
     Ok(())
 }
 
+/// Most distinct pixels of one wide-stroked run: a longer line is drawn in runs of this many,
+/// each sharing its first point with the last run's end.
+const WIDE_RUN: usize = 128;
+
+/// A stroke wider than one pixel: every pixel whose centre is within half the width of the
+/// polyline through `from` and `pixels`, each painted once (a run of [`WIDE_RUN`] distinct
+/// pixels at a time). Cost: one distance test a segment for each pixel of the run's box.
+fn wide<D: DrawTarget>(
+    target: &mut D,
+    style: &PrimitiveStyle<D::Color>,
+    from: Pixel,
+    pixels: impl Iterator<Item = Pixel>,
+) -> Result<(), D::Error> {
+    let mut run = [from; WIDE_RUN];
+    let mut len = 1;
+    for to in pixels {
+        if to == run[len - 1] {
+            continue;
+        }
+        run[len] = to;
+        len += 1;
+        if len == WIDE_RUN {
+            fill_wide(target, style, &run)?;
+            (run[0], len) = (to, 1);
+        }
+    }
+    fill_wide(target, style, &run[..len])
+}
+
+/// Paints the pixels within half the stroke width of the polyline through `run`.
+fn fill_wide<D: DrawTarget>(
+    target: &mut D,
+    style: &PrimitiveStyle<D::Color>,
+    run: &[Pixel],
+) -> Result<(), D::Error> {
+    let (Some(color), Some(first)) = (style.stroke_color, run.first()) else {
+        return Ok(());
+    };
+    let half = style.stroke_width as f32 * 0.5;
+    let reach = style.stroke_width.div_ceil(2) as i32;
+    let (mut lo, mut hi) = (*first, *first);
+    for p in run {
+        (lo.x, lo.y) = (lo.x.min(p.x), lo.y.min(p.y));
+        (hi.x, hi.y) = (hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let near = |x: i32, y: i32| {
+        let segments = run.windows(2).map(|w| (w[0], w[1]));
+        let mut segments = segments.chain((run.len() == 1).then_some((run[0], run[0])));
+        segments.any(|(a, b)| {
+            let (px, py) = ((x - a.x) as f32, (y - a.y) as f32);
+            let (dx, dy) = ((b.x - a.x) as f32, (b.y - a.y) as f32);
+            let span = dx * dx + dy * dy;
+            let t = if span > 0.0 {
+                ((px * dx + py * dy) / span).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let (ex, ey) = (px - t * dx, py - t * dy);
+            ex * ex + ey * ey <= half * half
+        })
+    };
+    let rows = (lo.y - reach)..=(hi.y + reach);
+    let painted = rows.flat_map(|y| ((lo.x - reach)..=(hi.x + reach)).map(move |x| (x, y)));
+    target.draw_iter(
+        painted
+            .filter(|&(x, y)| near(x, y))
+            .map(|(x, y)| ColoredPixel(Pixel::new(x, y), color)),
+    )
+}
+
 /// Sampled points of a curve seen through a [`View`]: an embedded-graphics primitive, drawn
 /// as the polyline through them with a [`PrimitiveStyle`]'s stroke (the fill is ignored).
 ///
-/// A 1-pixel stroke paints each pixel once, joints included, unless the curve crosses itself;
-/// wider strokes draw each segment as a styled line.
+/// A stroke paints each pixel once, joints included, unless the curve crosses itself. A wider
+/// stroke paints the pixels whose centres lie within half its width of the polyline, 128
+/// distinct pixels of it at a time (a longer curve may paint around those joints twice).
 #[derive(Clone, Copy, Debug)]
 pub struct Curve<'a, P: Point> {
     points: &'a [P],
@@ -236,6 +308,7 @@ impl<P: Point, C: PixelColor> StyledDrawable<PrimitiveStyle<C>> for Wireframe<'_
 mod tests {
     use super::*;
     use crate::{Patch, Vec2, Vec3};
+    use embedded_graphics::Drawable;
     use embedded_graphics::mock_display::MockDisplay;
     use embedded_graphics::pixelcolor::BinaryColor;
 
@@ -275,6 +348,31 @@ mod tests {
             .draw(&mut display)
             .unwrap();
         display.assert_pattern(&["###"]);
+    }
+
+    /// A wide stroke paints each pixel of the crate's own curve once: `MockDisplay` refuses
+    /// a pixel drawn twice (the segments used to overlap at every joint).
+    #[test]
+    fn a_wide_curve_paints_each_pixel_once() {
+        use crate::Bezier;
+        let c = Bezier::new([
+            Vec2::new(2.0f32, 2.0),
+            Vec2::new(20.0, 40.0),
+            Vec2::new(40.0, -20.0),
+            Vec2::new(58.0, 30.0),
+        ])
+        .unwrap();
+        let mut pts = [Vec2::default(); 33];
+        c.sample(&mut pts).unwrap();
+        let view = View::new(Vec2::new(0.0f32, 45.0), 1.0, 1.0).unwrap();
+        for width in [2, 3, 5] {
+            let mut display = MockDisplay::new();
+            Curve::new(&pts, view)
+                .into_styled(PrimitiveStyle::with_stroke(BinaryColor::On, width))
+                .draw(&mut display)
+                .unwrap();
+            assert!(display.affected_area().size.width > 50, "width {width}");
+        }
     }
 
     #[test]
