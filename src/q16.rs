@@ -37,7 +37,7 @@ use crate::Scalar;
 /// const GRAVITY: Q16 = Q16::ratio(-981, 100);
 /// const LIMIT: Q16 = Q16::from_int(100);
 /// assert_eq!(DT.to_bits(), 1092);
-/// assert_eq!(GRAVITY.to_f64(), -9.81000518798828125);
+/// assert_eq!(GRAVITY.to_bits(), -642_908); // -9.81 · 65 536, rounded
 /// assert_eq!(LIMIT.max(DT), LIMIT); // no ambiguity between Ord and Scalar
 /// ```
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -224,7 +224,10 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let springs = self.system.topology();
-        let joined: [bool; N] = core::array::from_fn(|i| springs.joins(i, (i + 1) % N));
+        let whole = !springs.any_broken();
+        // Joined along the chain unless something broke; the closing spring of a loop looked up.
+        let joined: [bool; N] =
+            core::array::from_fn(|i| (whole && i + 1 < N) || springs.joins(i, (i + 1) % N));
         self.system
             .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
                 contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times, &joined)
@@ -245,9 +248,11 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     /// the gap); [`Error::BufferTooSmall`] when `out` holds fewer than `N` points for the
     /// splines and the polyline, or 2 for one Bézier. Nothing is written on an error.
     pub fn sample(&self, smoothing: Smoothing, out: &mut [P]) -> Result<usize, Error> {
-        let pieces = self.pieces().count();
-        if pieces > 1 {
-            return Err(Error::Cut { pieces });
+        if self.system.topology().any_broken() {
+            let pieces = self.pieces().count();
+            if pieces > 1 {
+                return Err(Error::Cut { pieces });
+            }
         }
         smooth::Smoothed::open(smoothing, self.system.position_array())?.sample(out)
     }

@@ -223,6 +223,11 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         cut
     }
 
+    /// Whether any spring has snapped or been cut (one pass over the flags).
+    pub(crate) fn any_broken(&self) -> bool {
+        self.list.iter().any(|s| s.broken)
+    }
+
     /// Whether a live (unbroken) spring joins `a` and `b`.
     pub fn joins(&self, a: usize, b: usize) -> bool {
         self.list.iter().any(|s| {

@@ -703,6 +703,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// it further. This strain limit only takes energy out, so once the load is gone the rope
     /// is back in the range where its forces are exact, and its damping brings it to rest.
     /// Cost: one pass over the springs, in saturated substeps only.
+    #[cold]
+    #[inline(never)]
     fn limit_strain(&mut self) {
         let (x, v) = (
             Sh::flat_mut(&mut self.state.pos),
