@@ -248,11 +248,9 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     /// the gap); [`Error::BufferTooSmall`] when `out` holds fewer than `N` points for the
     /// splines and the polyline, or 2 for one Bézier. Nothing is written on an error.
     pub fn sample(&self, smoothing: Smoothing, out: &mut [P]) -> Result<usize, Error> {
-        if self.system.topology().any_broken() {
-            let pieces = self.pieces().count();
-            if pieces > 1 {
-                return Err(Error::Cut { pieces });
-            }
+        let pieces = N.saturating_sub(self.system.topology().chain_links());
+        if pieces > 1 {
+            return Err(Error::Cut { pieces });
         }
         smooth::Smoothed::open(smoothing, self.system.position_array())?.sample(out)
     }

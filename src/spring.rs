@@ -228,6 +228,13 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         self.list.iter().any(|s| s.broken)
     }
 
+    /// Live springs between neighbours along the chain (`i` to `i + 1`): a row of `N`
+    /// particles is in `N - chain_links()` pieces (no pair has two springs).
+    pub(crate) fn chain_links(&self) -> usize {
+        let link = |s: &Spring<S>| !s.broken && s.a.abs_diff(s.b) == 1;
+        self.list.iter().filter(|s| link(s)).count()
+    }
+
     /// Whether a live (unbroken) spring joins `a` and `b`.
     pub fn joins(&self, a: usize, b: usize) -> bool {
         self.list.iter().any(|s| {

@@ -29,9 +29,9 @@ pub struct StepInfo<S> {
     pub slow_motion: bool,
     /// `true` when a `Q16` force or acceleration reached the format's limit during the step
     /// and was clamped there: the motion is bounded but no longer what `f64` would compute
-    /// (a hand yanked far faster than the rope can follow). The springs are then held to
-    /// the length whose pull the format still holds (a strain limit that only takes energy
-    /// out), so the system comes back once the load is gone. Always `false` in floats,
+    /// (a hand yanked far faster than the rope can follow). Each such substep then halves
+    /// the velocities (clamped forces would feed the motion energy; halved, they only slow
+    /// it), so the system comes back once the load is gone. Always `false` in floats,
     /// whose overflow is caught as [`Error::Diverged`] instead.
     pub saturated: bool,
     /// Springs that snapped at the end of the step (their [`Snap`](crate::spring::Snap)
@@ -662,20 +662,19 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 damping: self.settings.damping,
                 time: self.time,
             };
-            let fits = self
+            unsaturated &= self
                 .settings
                 .integrator
                 .substep(&model, &mut self.state, h, forces);
-            if !fits {
-                self.limit_strain();
-            }
-            unsaturated &= fits;
             self.time += h;
             resolve(
                 &mut self.state,
                 &self.inv_mass,
                 (h, h * P::Scalar::from_i16((n - k) as i16)),
             );
+        }
+        if !unsaturated {
+            self.calm();
         }
         if self.flush_and_check() {
             // A held particle ends the step where its hand put it; the hand's velocity
@@ -696,47 +695,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         }
     }
 
-    /// After a `Q16` substep whose forces saturated (a hand yanked far past what the rope can
-    /// follow): every spring longer than the length at which its pull on its lighter end
-    /// reaches a quarter of [`Scalar::SAFE_RANGE`] is shortened to that length (both ends
-    /// moved by their inverse masses) and its ends lose the relative velocity that stretches
-    /// it further. This strain limit only takes energy out, so once the load is gone the rope
-    /// is back in the range where its forces are exact, and its damping brings it to rest.
-    /// Cost: one pass over the springs, in saturated substeps only.
+    /// After a `Q16` step whose forces saturated (a hand yanked far past what the rope can
+    /// follow): every velocity is halved. Clamped forces are no longer conservative and
+    /// would feed the motion energy; halved, they can only slow it, so once the load is gone
+    /// the system is back where its forces are exact and its damping brings it to rest.
+    /// Cost: one multiplication a coordinate, in saturated steps only.
     #[cold]
-    #[inline(never)]
-    fn limit_strain(&mut self) {
-        let (x, v) = (
-            Sh::flat_mut(&mut self.state.pos),
-            Sh::flat_mut(&mut self.state.vel),
-        );
-        let w = Sh::flat(&self.inv_mass);
-        let (zero, half) = (P::Scalar::ZERO, P::Scalar::ratio(1, 2));
-        let pull = P::Scalar::SAFE_RANGE * P::Scalar::ratio(1, 4);
-        self.topology.for_each_spring(|a, b, rest, m| {
-            let (wa, wb) = (w[a], w[b]);
-            let (w_sum, stiff) = (wa + wb, m.stiffness * wa.max(wb));
-            if w_sum <= zero || stiff <= zero {
-                return;
-            }
-            // Half lengths: a spring across the whole safe range is longer than Q16 holds.
-            let longest = (rest + pull / stiff) * half;
-            let d = (x[b] - x[a]) * half;
-            let l = d.length();
-            if l <= longest {
-                return;
-            }
-            let n = d * (P::Scalar::ONE / l);
-            let excess = (l - longest) * P::Scalar::from_i16(2);
-            let (share_a, share_b) = (wa / w_sum, wb / w_sum);
-            x[a] += n * (excess * share_a);
-            x[b] -= n * (excess * share_b);
-            let separating = (v[b] - v[a]).dot(n);
-            if separating > zero {
-                v[a] += n * (separating * share_a);
-                v[b] -= n * (separating * share_b);
-            }
-        });
+    fn calm(&mut self) {
+        let half = P::Scalar::ratio(1, 2);
+        for v in Sh::flat_mut(&mut self.state.vel) {
+            *v = *v * half;
+        }
     }
 
     /// Flushes tiny coordinates to 0 (see [`flush_tiny`]) and checks that every position is

@@ -489,8 +489,8 @@ fn sail_wind_fits_the_sail_it_blows_on() {
 
 /// A `Q16` rope held far past what its springs can pull (their forces saturate) comes back
 /// once the hand does: within 40 s every particle is within 2 px of a rope that only ever
-/// hung there, and no step is refused on the way (it used to swing thousands of pixels out
-/// for good, gaining energy from its clamped forces).
+/// hung there (it used to swing thousands of pixels out for good, gaining energy from its
+/// clamped forces).
 #[test]
 fn a_q16_rope_yanked_past_the_format_comes_back() {
     let q = Q16::from_f64;

@@ -188,7 +188,7 @@ mod q16 {
         );
         assert_eq!(rope.velocities()[7], v7);
         // ...and the whole rope, let go and thrown out of bounds, is refused, the state kept
-        // (a particle thrown alone is held back by the strain limit of a saturated step).
+        // (a particle thrown alone is slowed by the saturated steps its spring pulls in).
         rope.set_inv_mass(0, Q16::from_f64(14.0)).unwrap();
         for i in 0..8 {
             rope.set_velocity(i, Vec2::from_f64(16_000.0, 0.0)).unwrap();
