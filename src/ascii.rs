@@ -17,6 +17,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::error::invalid;
 use crate::{Error, Point, Scalar};
 
 /// Cells beyond this distance off the canvas are clamped before a line is walked, so a
@@ -39,7 +40,7 @@ impl<P: Point> View<P> {
     /// [`Error::InvalidParameter`] for a non-positive or non-finite cell size.
     pub fn new(top_left: P, cell_width: P::Scalar, cell_height: P::Scalar) -> Result<Self, Error> {
         for c in [cell_width, cell_height] {
-            crate::error::check_positive(c)?;
+            crate::error::check_positive(c, "cell size")?;
         }
         Ok(View {
             top_left,
@@ -71,10 +72,10 @@ impl<'a> Canvas<'a> {
     /// [`Error::InvalidParameter`] for a zero size; [`Error::BufferTooSmall`] when `cells`
     /// is shorter than `width * height`.
     pub fn new(cells: &'a mut [u8], width: usize, height: usize) -> Result<Self, Error> {
-        let needed = width
-            .checked_mul(height)
-            .filter(|&n| n > 0)
-            .ok_or(Error::InvalidParameter)?;
+        let needed = width.checked_mul(height).filter(|&n| n > 0).ok_or(invalid(
+            "canvas size",
+            "non-zero, width · height within usize",
+        ))?;
         if cells.len() < needed {
             return Err(Error::BufferTooSmall {
                 needed,
@@ -201,10 +202,10 @@ mod tests {
             Canvas::new(&mut cells, 3, 2).err(),
             Some(Error::BufferTooSmall { needed: 6, got: 4 })
         );
-        assert_eq!(
+        assert!(matches!(
             Canvas::new(&mut cells, 0, 2).err(),
-            Some(Error::InvalidParameter)
-        );
+            Some(Error::InvalidParameter { .. })
+        ));
         assert!(View::new(Vec2::new(0.0f32, 0.0), 0.0, 1.0).is_err());
     }
 }

@@ -26,6 +26,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::error::invalid;
 use core::ops::Range;
 
 use crate::error::check_points;
@@ -167,7 +168,7 @@ impl<S: Scalar, const N: usize, const CAP: usize, I: Integrator> Rope<Vec2<S>, N
         from: Vec2<S>,
         to: Vec2<S>,
     ) -> Result<Option<usize>, Error> {
-        check_points(&[from, to])?;
+        check_points(&[from, to], "from or to")?;
         let (lo, hi) = (from.min_coords(to), from.max_coords(to));
         let mut first: Option<(S, usize)> = None;
         for piece in pieces {
@@ -177,7 +178,10 @@ impl<S: Scalar, const N: usize, const CAP: usize, I: Integrator> Rope<Vec2<S>, N
                 || drawn.start > drawn.end
                 || drawn.end > points.len()
             {
-                return Err(Error::InvalidParameter);
+                return Err(invalid(
+                    "pieces",
+                    "what Rope::draw wrote for this rope and these points (pass &pieces[..count])",
+                ));
             }
             let (m, q) = (particles.len(), drawn.len());
             if m < 2 || q < 2 {
@@ -238,7 +242,7 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a swipe end that is NaN, infinite or
     /// beyond the safe range; nothing changes then.
     pub fn cut(&mut self, from: Vec2<P::Scalar>, to: Vec2<P::Scalar>) -> Result<usize, Error> {
-        check_points(&[from, to])?;
+        check_points(&[from, to], "from or to")?;
         let x = *self.position_array();
         let flat: &[P] = x.as_flattened();
         Ok(self.break_springs(|g| g.tear_across(flat, from, to)))

@@ -64,7 +64,7 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
                 "a cloth needs at least 3×3 particles (bending springs)"
             )
         };
-        check_positive(mass)?;
+        check_positive(mass, "mass")?;
         let step_u = du * P::Scalar::ratio(1, (U - 1) as u32);
         let step_v = dv * P::Scalar::ratio(1, (V - 1) as u32);
         let positions: [[P; U]; V] = core::array::from_fn(|j| {

@@ -21,6 +21,7 @@
 //! ```
 
 use crate::error::{check_non_negative, check_points};
+use crate::error::{invalid, out_of_range};
 use crate::{Aabb, Error, Point, Scalar, Vec2};
 
 /// Most corners of a [`Collider::polygon`].
@@ -90,9 +91,9 @@ fn first_axis<P: Point>() -> P {
 
 /// Checks a radius: finite, not negative, inside the safe range.
 fn check_radius<S: Scalar>(r: S) -> Result<S, Error> {
-    check_non_negative(r)?;
+    check_non_negative(r, "radius")?;
     if r > S::SAFE_RANGE {
-        return Err(Error::OutOfRange);
+        return Err(out_of_range::<S>("radius"));
     }
     Ok(r)
 }
@@ -115,7 +116,7 @@ impl<P: Point> Collider<P> {
     /// [`Error::InvalidParameter`] for a negative, NaN or infinite radius,
     /// [`Error::OutOfRange`] for one beyond [`Scalar::SAFE_RANGE`].
     pub fn ball(center: P, radius: P::Scalar) -> Result<Self, Error> {
-        check_points(&[center])?;
+        check_points(&[center], "center")?;
         let radius = check_radius(radius)?;
         Ok(Self::new(Solid::Ball { center, radius }))
     }
@@ -125,7 +126,7 @@ impl<P: Point> Collider<P> {
     /// # Errors
     /// As [`ball`](Self::ball), for both ends.
     pub fn capsule(a: P, b: P, radius: P::Scalar) -> Result<Self, Error> {
-        check_points(&[a, b])?;
+        check_points(&[a, b], "a or b")?;
         let radius = check_radius(radius)?;
         let (length, dir) = length_and_unit(b - a);
         let dir = dir.unwrap_or_else(first_axis);
@@ -144,8 +145,8 @@ impl<P: Point> Collider<P> {
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad point or normal;
     /// [`Error::InvalidParameter`] for a normal too short to have a direction.
     pub fn half_space(point: P, normal: P) -> Result<Self, Error> {
-        check_points(&[point, normal])?;
-        let normal = unit(normal).ok_or(Error::InvalidParameter)?;
+        check_points(&[point, normal], "point or normal")?;
+        let normal = unit(normal).ok_or(invalid("normal", "long enough to have a direction"))?;
         Ok(Self::new(Solid::HalfSpace { point, normal }))
     }
 
@@ -155,9 +156,9 @@ impl<P: Point> Collider<P> {
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad corner;
     /// [`Error::InvalidParameter`] when a coordinate of `min` is above that of `max`.
     pub fn aabb(min: P, max: P) -> Result<Self, Error> {
-        check_points(&[min, max])?;
+        check_points(&[min, max], "min or max")?;
         if (0..P::DIM).any(|d| min.coord(d) > max.coord(d)) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("min", "at most max in every coordinate"));
         }
         Ok(Self::new(Solid::Box(Aabb { min, max })))
     }
@@ -168,7 +169,7 @@ impl<P: Point> Collider<P> {
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for a bad velocity.
     pub fn moving(mut self, velocity: P) -> Result<Self, Error> {
-        check_points(&[velocity])?;
+        check_points(&[velocity], "velocity")?;
         self.velocity = velocity;
         Ok(self)
     }
@@ -185,10 +186,10 @@ impl<P: Point> Collider<P> {
         static_friction: P::Scalar,
         kinetic_friction: P::Scalar,
     ) -> Result<Self, Error> {
-        check_non_negative(static_friction)?;
-        check_non_negative(kinetic_friction)?;
+        check_non_negative(static_friction, "static friction")?;
+        check_non_negative(kinetic_friction, "kinetic friction")?;
         if kinetic_friction > static_friction {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("kinetic friction", "at most the static friction"));
         }
         (self.static_friction, self.kinetic_friction) = (static_friction, kinetic_friction);
         Ok(self)
@@ -201,7 +202,7 @@ impl<P: Point> Collider<P> {
     /// [`Error::InvalidParameter`] outside `0..=1` or NaN.
     pub fn with_restitution(mut self, restitution: P::Scalar) -> Result<Self, Error> {
         if !(restitution >= P::Scalar::ZERO && restitution <= P::Scalar::ONE) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("restitution", "in 0..=1"));
         }
         self.restitution = restitution;
         Ok(self)
@@ -231,28 +232,28 @@ impl<P: Point> Collider<P> {
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] when the offset or the moved shape leaves
     /// the safe range; the collider is then unchanged.
     pub fn translate(&mut self, offset: P) -> Result<(), Error> {
-        check_points(&[offset])?;
+        check_points(&[offset], "offset")?;
         let mut moved = self.solid;
         match &mut moved {
             Solid::Ball { center: p, .. }
             | Solid::Capsule { a: p, .. }
             | Solid::HalfSpace { point: p, .. } => {
                 *p += offset;
-                check_points(&[*p])?;
+                check_points(&[*p], "moved collider")?;
             }
             Solid::Box(b) => {
                 (b.min, b.max) = (b.min + offset, b.max + offset);
-                check_points(&[b.min, b.max])?;
+                check_points(&[b.min, b.max], "min or max")?;
             }
             Solid::Polygon { corners, count, .. } => {
                 for c in &mut corners[..usize::from(*count)] {
                     *c += offset;
                 }
-                check_points(&corners[..usize::from(*count)])?;
+                check_points(&corners[..usize::from(*count)], "moved corner")?;
             }
         }
         if let Solid::Capsule { a, dir, length, .. } = moved {
-            check_points(&[a + dir * length])?;
+            check_points(&[a + dir * length], "moved capsule end")?;
         }
         self.solid = moved;
         Ok(())
@@ -265,7 +266,7 @@ impl<P: Point> Collider<P> {
     /// As [`translate`](Self::translate); [`Error::InvalidParameter`] for a negative or
     /// non-finite `dt`.
     pub fn advance(&mut self, dt: P::Scalar) -> Result<(), Error> {
-        check_non_negative(dt)?;
+        check_non_negative(dt, "dt")?;
         self.translate(self.velocity * dt)
     }
 
@@ -397,7 +398,7 @@ impl<S: Scalar> Collider<Vec2<S>> {
     /// than 3 corners, a zero-length edge, or corners that do not turn one way (non-convex,
     /// or all on a line).
     pub fn polygon(corners: &[Vec2<S>]) -> Result<Self, Error> {
-        check_points(corners)?;
+        check_points(corners, "corners")?;
         let count = corners.len();
         if count > MAX_VERTICES {
             return Err(Error::CapacityExceeded {
@@ -405,7 +406,7 @@ impl<S: Scalar> Collider<Vec2<S>> {
             });
         }
         if count < 3 {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("polygon", "at least 3 distinct corners"));
         }
         let edge = |i: usize| corners[(i + 1) % count] - corners[i % count];
         // Convex: every turn has the sign of the first non-zero one; a line has none.
@@ -416,7 +417,10 @@ impl<S: Scalar> Collider<Vec2<S>> {
             right |= t < S::ZERO;
         }
         if left == right {
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "polygon",
+                "convex, its corners not all on one line",
+            ));
         }
         let mut ordered = [Vec2::default(); MAX_VERTICES];
         for (i, o) in ordered.iter_mut().take(count).enumerate() {
@@ -429,7 +433,8 @@ impl<S: Scalar> Collider<Vec2<S>> {
         let mut normals = [Vec2::default(); MAX_VERTICES];
         for i in 0..count {
             let e = ordered[(i + 1) % count] - ordered[i];
-            normals[i] = unit(Vec2::new(e.y, -e.x)).ok_or(Error::InvalidParameter)?;
+            normals[i] = unit(Vec2::new(e.y, -e.x))
+                .ok_or(invalid("polygon edge", "long enough to have a direction"))?;
         }
         Ok(Self::new(Solid::Polygon {
             corners: ordered,
@@ -548,44 +553,71 @@ mod tests {
     #[test]
     fn bad_shapes_are_refused() {
         let o = Vec2::new(0.0f32, 0.0);
-        assert_eq!(Collider::ball(o, f32::NAN), Err(Error::InvalidParameter));
-        assert_eq!(
+        assert!(matches!(
+            Collider::ball(o, f32::NAN),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
             Collider::ball(o, f32::INFINITY),
-            Err(Error::InvalidParameter)
-        );
-        assert_eq!(Collider::ball(o, -1.0), Err(Error::InvalidParameter));
-        assert_eq!(
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
+            Collider::ball(o, -1.0),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
             Collider::ball(Vec2::new(f32::NAN, 0.0), 1.0),
-            Err(Error::NonFinite)
-        );
-        assert_eq!(Collider::ball(o, 1e30), Err(Error::OutOfRange));
-        assert_eq!(Collider::half_space(o, o), Err(Error::InvalidParameter));
-        assert_eq!(
+            Err(Error::NonFinite { .. })
+        ));
+        assert!(matches!(
+            Collider::ball(o, 1e30),
+            Err(Error::OutOfRange { .. })
+        ));
+        assert!(matches!(
+            Collider::half_space(o, o),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
             Collider::aabb(Vec2::new(1.0, 0.0), o),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
         let line = [o, Vec2::new(1.0, 0.0), Vec2::new(2.0, 0.0)];
-        assert_eq!(Collider::polygon(&line), Err(Error::InvalidParameter));
+        assert!(matches!(
+            Collider::polygon(&line),
+            Err(Error::InvalidParameter { .. })
+        ));
         let dart = [
             o,
             Vec2::new(2.0, 1.0),
             Vec2::new(0.0, 2.0),
             Vec2::new(0.5, 1.0),
         ];
-        assert_eq!(Collider::polygon(&dart), Err(Error::InvalidParameter));
-        assert_eq!(Collider::polygon(&line[..2]), Err(Error::InvalidParameter));
+        assert!(matches!(
+            Collider::polygon(&dart),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
+            Collider::polygon(&line[..2]),
+            Err(Error::InvalidParameter { .. })
+        ));
         assert_eq!(
             Collider::polygon(&[o; 9]),
             Err(Error::CapacityExceeded { capacity: 8 })
         );
         let ball = Collider::ball(o, 1.0).unwrap();
-        assert_eq!(ball.with_friction(0.2, 0.5), Err(Error::InvalidParameter));
-        assert_eq!(ball.with_restitution(1.5), Err(Error::InvalidParameter));
+        assert!(matches!(
+            ball.with_friction(0.2, 0.5),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(matches!(
+            ball.with_restitution(1.5),
+            Err(Error::InvalidParameter { .. })
+        ));
         let mut moved = ball;
-        assert_eq!(
+        assert!(matches!(
             moved.translate(Vec2::new(1e30, 0.0)),
-            Err(Error::OutOfRange)
-        );
+            Err(Error::OutOfRange { .. })
+        ));
         assert_eq!(moved, ball);
     }
 }

@@ -47,6 +47,7 @@
 //!
 //! [`MAX_SUBSTEPS`]: crate::system::MAX_SUBSTEPS
 
+use crate::error::invalid;
 use core::cell::Cell;
 
 use crate::collider::Collider;
@@ -92,8 +93,8 @@ impl<'a, P: Point> Contacts<'a, P> {
         thickness: P::Scalar,
         touch: Touch,
     ) -> Result<Self, Error> {
-        if check_non_negative(thickness)? > P::Scalar::SAFE_RANGE {
-            return Err(Error::InvalidParameter);
+        if check_non_negative(thickness, "thickness")? > P::Scalar::SAFE_RANGE {
+            return Err(invalid("thickness", "at most the safe range (Q16: 16 383)"));
         }
         Ok(Contacts {
             colliders,

@@ -4,13 +4,25 @@ use crate::Scalar;
 use core::fmt;
 
 /// What went wrong. Every fallible call in the crate returns this; none of them panics.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Its `Display` text names the value, the limit it broke and, where there is one, what to
+/// do about it.
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
     /// An input coordinate or parameter is NaN, infinite, or a saturated `Q16`.
-    NonFinite,
-    /// An input coordinate is finite but beyond [`Scalar::SAFE_RANGE`](crate::Scalar::SAFE_RANGE).
-    OutOfRange,
+    NonFinite {
+        /// What it is (`"position"`, `"wind velocity"`, ...).
+        name: &'static str,
+    },
+    /// An input coordinate, or a result, is finite but beyond what the format holds safely:
+    /// [`Scalar::SAFE_RANGE`](crate::Scalar::SAFE_RANGE) (`16 383` in `Q16`), or a system's
+    /// [`bounds`](crate::Settings::bounds).
+    OutOfRange {
+        /// What it is.
+        name: &'static str,
+        /// The limit it is beyond (`±limit`).
+        limit: f64,
+    },
     /// The output buffer cannot hold what was asked for.
     BufferTooSmall {
         /// Elements the call needs.
@@ -18,8 +30,13 @@ pub enum Error {
         /// Elements the buffer has.
         got: usize,
     },
-    /// A tolerance or other parameter is zero, negative or otherwise unusable.
-    InvalidParameter,
+    /// A parameter is outside what the call accepts.
+    InvalidParameter {
+        /// Which parameter.
+        name: &'static str,
+        /// What it must be (`"finite and > 0"`, `"at most 4 096 steps a frame"`, ...).
+        expected: &'static str,
+    },
     /// A spring names a particle index at or past the particle count.
     IndexOutOfRange {
         /// The offending index.
@@ -69,12 +86,18 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Error::NonFinite => f.write_str("input is NaN, infinite or saturated"),
-            Error::OutOfRange => f.write_str("input coordinate is beyond the format's safe range"),
+            Error::NonFinite { name } => {
+                write!(f, "{name} is NaN, infinite or a saturated Q16")
+            }
+            Error::OutOfRange { name, limit } => write!(
+                f,
+                "{name} is beyond ±{limit}, what the format holds safely: \
+                 work in smaller units (metres, not pixels) or relative to an anchor"
+            ),
             Error::BufferTooSmall { needed, got } => {
                 write!(f, "buffer too small: needs {needed} elements, has {got}")
             }
-            Error::InvalidParameter => f.write_str("parameter is zero, negative or not finite"),
+            Error::InvalidParameter { name, expected } => write!(f, "{name} must be {expected}"),
             Error::IndexOutOfRange { index, len } => {
                 write!(f, "particle index {index} out of range for {len} particles")
             }
@@ -88,11 +111,13 @@ impl fmt::Display for Error {
             Error::CapacityExceeded { capacity } => {
                 write!(f, "more springs than the capacity of {capacity}")
             }
-            Error::Diverged => {
-                f.write_str("the simulation diverged; the state before the step was kept")
-            }
+            Error::Diverged => f.write_str(
+                "the step left the scene's bounds or the format's range; \
+                 the state before it was kept",
+            ),
             Error::TooStiff => f.write_str(
-                "the springs are too stiff for the substep limit in this format; nothing changed",
+                "the springs are too stiff for the substep limit in this format: \
+                 soften them, add mass or use fewer particles; nothing changed",
             ),
             Error::Pinned { index } => write!(f, "particle {index} is pinned"),
             Error::Cut { pieces } => write!(
@@ -106,46 +131,71 @@ impl fmt::Display for Error {
 #[cfg(dunas_std)]
 impl std::error::Error for Error {}
 
-/// Checks that every point is finite and inside the safe range.
-pub(crate) fn check_points<P: crate::Point>(points: &[P]) -> Result<(), Error> {
+/// What a finite, positive parameter must be.
+pub(crate) const POSITIVE: &str = "finite and > 0";
+/// What a finite, non-negative parameter must be.
+pub(crate) const NON_NEGATIVE: &str = "finite and >= 0";
+
+/// [`Error::InvalidParameter`] for `name`, which must be `expected`.
+pub(crate) const fn invalid(name: &'static str, expected: &'static str) -> Error {
+    Error::InvalidParameter { name, expected }
+}
+
+/// [`Error::OutOfRange`] for `name` beyond the format's safe range.
+pub(crate) fn out_of_range<S: crate::Scalar>(name: &'static str) -> Error {
+    Error::OutOfRange {
+        name,
+        limit: S::SAFE_RANGE.to_f64(),
+    }
+}
+
+/// Checks that every point (`name`) is finite and inside the safe range.
+pub(crate) fn check_points<P: crate::Point>(points: &[P], name: &'static str) -> Result<(), Error> {
     for p in points {
         if !p.is_finite() {
-            return Err(Error::NonFinite);
+            return Err(Error::NonFinite { name });
         }
         if !p.in_safe_range() {
-            return Err(Error::OutOfRange);
+            return Err(out_of_range::<P::Scalar>(name));
         }
     }
     Ok(())
 }
 
-/// [`Error::OutOfRange`] unless every coordinate of `points` is within `±bounds`.
-pub(crate) fn check_inside<P: crate::Point>(points: &[P], bounds: P::Scalar) -> Result<(), Error> {
+/// [`Error::OutOfRange`] unless every coordinate of `points` (`name`) is within `±bounds`.
+pub(crate) fn check_inside<P: crate::Point>(
+    points: &[P],
+    bounds: P::Scalar,
+    name: &'static str,
+) -> Result<(), Error> {
     let inside = points
         .iter()
         .all(|p| (0..P::DIM).all(|d| p.coord(d).abs() <= bounds));
     if inside {
         Ok(())
     } else {
-        Err(Error::OutOfRange)
+        Err(Error::OutOfRange {
+            name,
+            limit: bounds.to_f64(),
+        })
     }
 }
 
-/// `Ok(x)` when `x` is finite and `> 0`, else [`Error::InvalidParameter`].
-pub(crate) fn check_positive<S: crate::Scalar>(x: S) -> Result<S, Error> {
+/// `Ok(x)` when `x` is finite and `> 0`, else [`Error::InvalidParameter`] naming `name`.
+pub(crate) fn check_positive<S: crate::Scalar>(x: S, name: &'static str) -> Result<S, Error> {
     if x > S::ZERO && x.is_finite() {
         Ok(x)
     } else {
-        Err(Error::InvalidParameter)
+        Err(invalid(name, POSITIVE))
     }
 }
 
-/// `Ok(x)` when `x` is finite and `>= 0`, else [`Error::InvalidParameter`].
-pub(crate) fn check_non_negative<S: crate::Scalar>(x: S) -> Result<S, Error> {
+/// `Ok(x)` when `x` is finite and `>= 0`, else [`Error::InvalidParameter`] naming `name`.
+pub(crate) fn check_non_negative<S: crate::Scalar>(x: S, name: &'static str) -> Result<S, Error> {
     if x >= S::ZERO && x.is_finite() {
         Ok(x)
     } else {
-        Err(Error::InvalidParameter)
+        Err(invalid(name, NON_NEGATIVE))
     }
 }
 
@@ -154,10 +204,15 @@ pub(crate) fn check_non_negative<S: crate::Scalar>(x: S) -> Result<S, Error> {
 /// `5 / 65 536`), so that a momentum, mass times a velocity in the safe range, fits the
 /// format; else [`Error::InvalidParameter`].
 pub(crate) fn check_inv_mass<S: crate::Scalar>(w: S) -> Result<S, Error> {
-    if check_non_negative(w)? == S::ZERO || (S::ONE / w).in_safe_range() {
+    const EXPECTED: &str =
+        "0 (pinned) or the inverse of a mass within the safe range (Q16: 1/16383 to 13107)";
+    if check_non_negative(w, "inverse mass").map_err(|_| invalid("inverse mass", EXPECTED))?
+        == S::ZERO
+        || (S::ONE / w).in_safe_range()
+    {
         Ok(w)
     } else {
-        Err(Error::InvalidParameter)
+        Err(invalid("inverse mass", EXPECTED))
     }
 }
 

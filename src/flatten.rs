@@ -206,7 +206,7 @@ fn walk<S: Scalar>(curve: &Bezier<Vec2<S>, 4>, tol: S, out: &mut [Vec2<S>]) -> u
 /// # Errors
 /// [`Error::InvalidParameter`] for a tolerance that is not positive and finite.
 pub fn segments<S: Scalar>(curve: &Bezier<Vec2<S>, 4>, tol: S) -> Result<usize, Error> {
-    let tol = check_positive(tol)?;
+    let tol = check_positive(tol, "tolerance")?;
     Ok(walk(curve, tol, &mut []))
 }
 
@@ -224,7 +224,7 @@ pub fn flatten<S: Scalar>(
     tol: S,
     out: &mut [Vec2<S>],
 ) -> Result<usize, Error> {
-    let tol = check_positive(tol)?;
+    let tol = check_positive(tol, "tolerance")?;
     let got = out.len();
     let Some(first) = out.first_mut() else {
         return Err(Error::BufferTooSmall {

@@ -239,7 +239,7 @@ impl<S: Scalar> SailWind<S> {
     pub fn new(air: Wind<Vec3<S>>, pressure: S) -> Result<Self, Error> {
         let mut wind = SailWind {
             air: Wind::still(S::ZERO),
-            pressure: check_non_negative(pressure)?,
+            pressure: check_non_negative(pressure, "pressure")?,
         };
         wind.set_air(air)?;
         Ok(wind)
@@ -255,12 +255,14 @@ impl<S: Scalar> SailWind<S> {
     /// # Errors
     /// As [`new`](Self::new).
     pub fn set_air(&mut self, air: Wind<Vec3<S>>) -> Result<(), Error> {
-        check_points(&[air.velocity, air.gust])?;
+        check_points(&[air.velocity, air.gust], "velocity or gust")?;
         for x in [air.drag, air.gust_length] {
-            check_non_negative(x)?;
+            check_non_negative(x, "drag or gust length")?;
         }
         if !(air.gust_start.is_finite() && air.gust_every.is_finite()) {
-            return Err(Error::NonFinite);
+            return Err(Error::NonFinite {
+                name: "gust start or period",
+            });
         }
         self.air = air;
         Ok(())
@@ -331,8 +333,8 @@ impl<P: Point> AnchorSpring<P> {
         rest: P::Scalar,
         material: Material<P::Scalar>,
     ) -> Result<Self, Error> {
-        check_points(&[anchor])?;
-        check_non_negative(rest)?;
+        check_points(&[anchor], "anchor")?;
+        check_non_negative(rest, "rest")?;
         material.check()?;
         Ok(AnchorSpring {
             particle,
@@ -352,7 +354,7 @@ impl<P: Point> AnchorSpring<P> {
     /// # Errors
     /// [`Error::NonFinite`] / [`Error::OutOfRange`]; the anchor stays where it was.
     pub fn set_anchor(&mut self, anchor: P) -> Result<(), Error> {
-        check_points(&[anchor])?;
+        check_points(&[anchor], "anchor")?;
         self.anchor = anchor;
         Ok(())
     }
@@ -448,10 +450,10 @@ mod tests {
         assert!(SailWind::<f32>::new(air, f32::NAN).is_err());
         let mut sail = SailWind::<f32>::new(air, 0.7).unwrap();
         air.velocity.y = f32::NAN;
-        assert_eq!(sail.set_air(air), Err(Error::NonFinite));
+        assert!(matches!(sail.set_air(air), Err(Error::NonFinite { .. })));
         air.velocity.y = 0.0;
         air.gust_every = f32::INFINITY;
-        assert_eq!(sail.set_air(air), Err(Error::NonFinite));
+        assert!(matches!(sail.set_air(air), Err(Error::NonFinite { .. })));
         air.gust_every = 0.0;
         air.gust_length = -1.0;
         assert!(sail.set_air(air).is_err());
@@ -501,13 +503,16 @@ mod tests {
         assert_eq!(acc[1], Vec2::new(0.0, 0.0));
         // A NaN anchor is refused, when built and when moved.
         let nan = Vec2::new(f64::NAN, 0.0);
-        assert_eq!(
+        assert!(matches!(
             AnchorSpring::new(0, nan, 2.0, material),
-            Err(Error::NonFinite)
-        );
-        assert_eq!(anchor.set_anchor(nan), Err(Error::NonFinite));
+            Err(Error::NonFinite { .. })
+        ));
+        assert!(matches!(
+            anchor.set_anchor(nan),
+            Err(Error::NonFinite { .. })
+        ));
         assert_eq!(anchor.anchor(), Vec2::new(0.0, 4.0));
         let bad = AnchorSpring::new(0, Vec2::new(0.0, 4.0), f64::NAN, material);
-        assert_eq!(bad, Err(Error::InvalidParameter));
+        assert!(matches!(bad, Err(Error::InvalidParameter { .. })));
     }
 }

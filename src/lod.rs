@@ -69,7 +69,7 @@ pub fn segments<P: Point, const N: usize>(
     curve: &Bezier<P, N>,
     tolerance: P::Scalar,
 ) -> Result<usize, Error> {
-    check_positive(tolerance)?;
+    check_positive(tolerance, "tolerance")?;
     let m = half_second_difference(curve.points().iter().copied());
     Ok(wang_count(N - 1, m, tolerance))
 }
@@ -88,7 +88,7 @@ pub fn patch_segments<P: Point, const U: usize, const V: usize>(
     patch: &Patch<P, U, V>,
     tolerance: P::Scalar,
 ) -> Result<(usize, usize), Error> {
-    check_positive(tolerance)?;
+    check_positive(tolerance, "tolerance")?;
     let half_tol = Scalar::midpoint(tolerance, P::Scalar::ZERO);
     let rows = patch.points();
     let mut mu = P::Scalar::ZERO;
@@ -126,9 +126,9 @@ pub fn surface_segments<P: Point, const U: usize, const V: usize>(
     smoothing: Smoothing,
     tolerance: P::Scalar,
 ) -> Result<(usize, usize), Error> {
-    check_positive(tolerance)?;
+    check_positive(tolerance, "tolerance")?;
     const { assert!(U >= 2 && V >= 2, "a surface needs at least 2×2 particles") };
-    crate::error::check_points(grid.as_flattened())?;
+    crate::error::check_points(grid.as_flattened(), "grid point")?;
     let (basis, blend) = match smoothing {
         Smoothing::Bezier => return patch_segments(&Patch::new(*grid)?, tolerance),
         Smoothing::Polyline => return Ok((U - 1, V - 1)),
@@ -216,7 +216,10 @@ mod tests {
         ])
         .unwrap();
         for tol in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-            assert_eq!(segments(&c, tol), Err(Error::InvalidParameter));
+            assert!(matches!(
+                segments(&c, tol),
+                Err(Error::InvalidParameter { .. })
+            ));
         }
         assert_eq!(segments(&c, 1e-30), Ok(MAX_SEGMENTS));
     }

@@ -2,6 +2,7 @@
 
 use crate::curve::{clamp_unit, eval_points, tangent_points};
 use crate::error::check_points;
+use crate::error::invalid;
 use crate::{Aabb, Error, Point, Scalar, Vec3};
 
 /// A Bézier patch with `U × V` control points: `V` rows of `U` points each.
@@ -40,7 +41,7 @@ impl<P: Point, const U: usize, const V: usize> Patch<P, U, V> {
             )
         };
         for row in &points {
-            check_points(row)?;
+            check_points(row, "control point")?;
         }
         Ok(Patch { points })
     }
@@ -166,12 +167,12 @@ fn grid_param<S: Scalar>(i: usize, n: usize) -> S {
 
 fn grid_count(nu: usize, nv: usize, len: usize) -> Result<usize, Error> {
     if nu < 2 || nv < 2 {
-        return Err(Error::InvalidParameter);
+        return Err(invalid("grid size", "at least 2 points each way"));
     }
     let count = nu
         .checked_mul(nv)
         .filter(|&c| c <= crate::sampler::MAX_SAMPLES);
-    let count = count.ok_or(Error::InvalidParameter)?;
+    let count = count.ok_or(invalid("grid size", "at most MAX_SAMPLES points"))?;
     if len < count {
         return Err(Error::BufferTooSmall {
             needed: count,
@@ -198,7 +199,10 @@ fn grid_count(nu: usize, nv: usize, len: usize) -> Result<usize, Error> {
 /// 65536 points (`u16` indices); [`Error::BufferTooSmall`] when `out` is too short.
 pub fn strip_indices(nu: usize, nv: usize, out: &mut [u16]) -> Result<usize, Error> {
     if nu < 2 || nv < 2 || nu.saturating_mul(nv) > 1 << 16 {
-        return Err(Error::InvalidParameter);
+        return Err(invalid(
+            "grid size",
+            "at least 2 points each way and at most 65 536 points",
+        ));
     }
     let needed = 2 * nu * (nv - 1) + 2 * (nv - 2);
     if out.len() < needed {
@@ -307,7 +311,10 @@ mod tests {
     fn grid_errors() {
         let p = wavy();
         let mut pos = [Vec3::default(); 10];
-        assert_eq!(p.sample_grid(1, 5, &mut pos), Err(Error::InvalidParameter));
+        assert!(matches!(
+            p.sample_grid(1, 5, &mut pos),
+            Err(Error::InvalidParameter { .. })
+        ));
         assert_eq!(
             p.sample_grid(4, 4, &mut pos),
             Err(Error::BufferTooSmall {
@@ -315,10 +322,10 @@ mod tests {
                 got: 10
             })
         );
-        assert_eq!(
+        assert!(matches!(
             p.sample_grid(usize::MAX, 2, &mut pos),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
     }
 
     #[test]
@@ -350,9 +357,9 @@ mod tests {
             area += 1;
         }
         assert_eq!(area, 2 * (nu - 1) * (nv - 1));
-        assert_eq!(
+        assert!(matches!(
             strip_indices(300, 300, &mut idx),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
     }
 }

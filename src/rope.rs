@@ -1,5 +1,6 @@
 //! A rope: a row of particles on springs, drawn as a smooth curve.
 
+use crate::error::{invalid, out_of_range};
 use core::ops::{Deref, DerefMut};
 
 use crate::catenary::Catenary;
@@ -56,8 +57,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     /// at the initial spacing.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive or non-finite mass,
-    /// [`Error::ZeroRestLength`] when `start == end`, and the errors of [`MassSpring::new`].
+    /// [`Error::InvalidParameter`] for a non-positive or non-finite mass or when
+    /// `start == end`, and the errors of [`MassSpring::new`].
     pub fn new(
         start: P,
         end: P,
@@ -65,7 +66,10 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         material: Material<P::Scalar>,
         settings: Settings<P, I>,
     ) -> Result<Self, Error> {
-        check_points(&[start, end])?;
+        check_points(&[start, end], "start or end")?;
+        if start == end {
+            return Err(invalid("end", "a different point from start"));
+        }
         let last = (N - 1) as u32;
         let positions: [P; N] =
             core::array::from_fn(|i| start.lerp(end, P::Scalar::ratio(i as u32, last)));
@@ -105,8 +109,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         material: Material<P::Scalar>,
         settings: Settings<P, I>,
     ) -> Result<Self, Error> {
-        check_points(&[start, end])?;
-        check_positive(length)?;
+        check_points(&[start, end], "start or end")?;
+        check_positive(length, "length")?;
         settings.check()?;
         let coords = |p: P| -> [f64; 3] {
             core::array::from_fn(|d| if d < P::DIM { p.coord(d).to_f64() } else { 0.0 })
@@ -115,7 +119,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         let (chord, gravity) = (coords(end - start), coords(settings.gravity));
         let g = dot(gravity, gravity);
         if g <= 0.0 {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("gravity", "non-zero (a rope hangs along it)"));
         }
         // Up is against gravity; across is the chord's part square to it.
         let up: [f64; 3] = core::array::from_fn(|d| -gravity[d] / crate::catenary::sqrt(g));
@@ -124,7 +128,10 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         let span = crate::catenary::sqrt(dot(across, across));
         let length_f = length.to_f64();
         if span <= 1e-9 * length_f || length_f * length_f <= dot(chord, chord) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "length",
+                "longer than the distance between the ends, which are not on one vertical",
+            ));
         }
         let curve = Catenary::through(span, rise, length_f);
         let mut positions = [start; N];
@@ -136,7 +143,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
             }
         }
         (positions[0], positions[N - 1]) = (start, end);
-        check_points(&positions)?;
+        check_points(&positions, "positions")?;
         let rest = length / P::Scalar::from_i16((N - 1).min(i16::MAX as usize) as i16);
         let mut springs = Springs::new(material);
         for i in 0..N - 1 {
@@ -161,14 +168,14 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
                 "a rope of N particles needs room for N - 1 springs"
             );
         };
-        check_positive(mass)?;
+        check_positive(mass, "mass")?;
         // Inner particles carry m/(N-1), the ends half that.
         let inner = P::Scalar::ratio((N - 1) as u32, 1) / mass;
         let end = inner * P::Scalar::from_i16(2);
         let mut inv_mass = [inner; N];
         inv_mass[0] = P::Scalar::ZERO;
         inv_mass[N - 1] = end;
-        check_positive(end)?;
+        check_positive(end, "end particle mass (N - 1) / mass")?;
         Self::from_parts(positions, inv_mass, springs, settings)
     }
 
@@ -266,7 +273,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         smoothing: Smoothing,
         accuracy: P::Scalar,
     ) -> Result<P::Scalar, Error> {
-        check_positive(accuracy)?;
+        check_positive(accuracy, "accuracy")?;
         let positions = self.system.position_array();
         let mut length = P::Scalar::ZERO;
         for run in self.pieces().filter(|run| run.len() > 1) {
@@ -277,7 +284,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         if length.is_finite() {
             Ok(length)
         } else {
-            Err(Error::OutOfRange)
+            Err(out_of_range::<P::Scalar>("drawn length"))
         }
     }
 
@@ -303,9 +310,12 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         dt: P::Scalar,
         settle_steps: u32,
     ) -> Result<P::Scalar, Error> {
-        check_positive(dt)?;
-        if check_positive(target)? > P::Scalar::SAFE_RANGE {
-            return Err(Error::InvalidParameter);
+        check_positive(dt, "dt")?;
+        if check_positive(target, "target")? > P::Scalar::SAFE_RANGE {
+            return Err(invalid(
+                "target length",
+                "at most the safe range (Q16: 16 383)",
+            ));
         }
         let before = self.system.clone();
         let result = self.calibrate(smoothing, target, dt, settle_steps);

@@ -32,6 +32,7 @@
 //! ```
 
 use crate::curve::degree_scalar;
+use crate::error::invalid;
 use crate::{Bezier, Error, Point, Scalar};
 
 /// Most points one call writes (`2^24`, where `f32` still counts exactly).
@@ -72,7 +73,7 @@ pub trait Sampler<P: Point, const N: usize> {
     /// or a sampler that writes fewer than 2 points or more than its share.
     fn sample_joined(&self, pieces: &[Bezier<P, N>], out: &mut [P]) -> Result<usize, Error> {
         let Some(last) = pieces.last() else {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("pieces", "at least one curve"));
         };
         let len = out.len();
         let total = |per_piece: usize| Error::BufferTooSmall {
@@ -89,7 +90,12 @@ pub trait Sampler<P: Point, const N: usize> {
             match self.sample(piece, slot) {
                 Ok(c) if (2..=share).contains(&c) => at += c - 1,
                 // A sampler that breaks its contract (fewer than 2 points, more than asked).
-                Ok(_) => return Err(Error::InvalidParameter),
+                Ok(_) => {
+                    return Err(invalid(
+                        "sampler",
+                        "writing 2 points or more, and no more than asked",
+                    ));
+                }
                 Err(Error::BufferTooSmall { needed, .. }) => return Err(total(needed.max(2))),
                 Err(e) => return Err(e),
             }

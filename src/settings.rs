@@ -1,5 +1,6 @@
 //! What a system is told once: gravity, damping, scene bounds, integrator and accuracy.
 
+use crate::error::invalid;
 use crate::integrator::SymplecticEuler;
 use crate::{Error, Point, Scalar};
 
@@ -100,15 +101,15 @@ impl<P: Point, I> Settings<P, I> {
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for gravity; [`Error::InvalidParameter`]
     /// for a negative or non-finite damping, or bounds that are not in `(0, SAFE_RANGE]`.
     pub fn check(&self) -> Result<(), Error> {
-        crate::error::check_points(&[self.gravity])?;
-        crate::error::check_non_negative(self.damping)?;
+        crate::error::check_points(&[self.gravity], "gravity")?;
+        crate::error::check_non_negative(self.damping, "damping")?;
         let bounds_ok = self.bounds > P::Scalar::ZERO
             && self.bounds.is_finite()
             && self.bounds <= P::Scalar::SAFE_RANGE;
         if bounds_ok {
             Ok(())
         } else {
-            Err(Error::InvalidParameter)
+            Err(invalid("bounds", "finite, > 0 and at most the safe range"))
         }
     }
 }

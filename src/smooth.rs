@@ -36,6 +36,7 @@
 //! ```
 
 use crate::error::check_points;
+use crate::error::invalid;
 use crate::sampler::{DefaultSampler, Sampler};
 use crate::{Aabb, Bezier, Error, Point, Scalar};
 use core::ops::{Add, Mul, Sub};
@@ -241,7 +242,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     #[inline]
     pub fn open(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
         const { assert!(K >= 2, "smoothing needs at least 2 particles") };
-        check_points(particles)?;
+        check_points(particles, "particles")?;
         let pieces = match method {
             Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(*particles)),
             Smoothing::BSpline => Pieces::Cubic(bspline_spans(particles, K), K - 1),
@@ -273,7 +274,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         for p in &mut row[n..] {
             *p = particles[n - 1];
         }
-        check_points(&row)?;
+        check_points(&row, "particle")?;
         let pieces = match method {
             Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(row)),
             Smoothing::BSpline => Pieces::Cubic(bspline_spans(&row, n), n - 1),
@@ -318,9 +319,9 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     /// [`closed`](Self::closed) for any `K`: [`Error::InvalidParameter`] below 3 particles.
     pub(crate) fn ring(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
         if K < 3 {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("particle count", "at least 3 for a closed curve"));
         }
-        check_points(particles)?;
+        check_points(particles, "particles")?;
         let mut controls = *particles;
         if method == Smoothing::NaturalSpline {
             natural_controls(&mut controls, true);
@@ -329,7 +330,12 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         let sixth = P::Scalar::ratio(1, 6);
         let third = P::Scalar::ratio(1, 3);
         let pieces = match method {
-            Smoothing::Bezier => return Err(Error::InvalidParameter),
+            Smoothing::Bezier => {
+                return Err(invalid(
+                    "smoothing",
+                    "a spline or the polyline (one Bezier cannot close)",
+                ));
+            }
             Smoothing::Polyline => Pieces::Straight(
                 core::array::from_fn(|i| Bezier::new_unchecked([at(i), at(i + 1)])),
                 K,
@@ -804,10 +810,10 @@ mod tests {
                 assert!((out[k + 8] - out2[k]).length() < 1e-12, "{m:?} {k}");
             }
         }
-        assert_eq!(
+        assert!(matches!(
             Smoothed::closed(Smoothing::Bezier, &ring),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
     }
 
     #[test]
@@ -859,10 +865,10 @@ mod tests {
             Err(Error::BufferTooSmall { needed: 6, got: 5 })
         );
         p[3].y = f64::NAN;
-        assert_eq!(
+        assert!(matches!(
             Smoothed::open(Smoothing::Polyline, &p),
-            Err(Error::NonFinite)
-        );
+            Err(Error::NonFinite { .. })
+        ));
     }
 
     #[test]

@@ -110,6 +110,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::error::invalid;
 use crate::error::{check_index, check_inside, check_non_negative, check_points, check_positive};
 use core::ops::{Mul, Sub};
 
@@ -238,13 +239,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 "a cubic spline rope needs at least 4 control points"
             )
         };
-        check_points(&[start, end])?;
-        if !check_positive(mass)?.in_safe_range() {
-            return Err(Error::InvalidParameter);
+        check_points(&[start, end], "start or end")?;
+        if !check_positive(mass, "mass")?.in_safe_range() {
+            return Err(invalid("mass", "at most the safe range (Q16: 16 383)"));
         }
         material.check()?;
         settings.check()?;
-        check_inside(&[start, end], settings.bounds)?;
+        check_inside(&[start, end], settings.bounds, "start or end")?;
         let length = start.distance(end);
         if !(length > P::Scalar::EPSILON && length.is_finite()) {
             return Err(Error::ZeroRestLength { a: 0, b: K - 1 });
@@ -263,7 +264,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let zero = P::Scalar::ZERO;
         if unit <= zero {
             // A mass below the format's resolution.
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "mass",
+                "large enough for the format to resolve a control point's share",
+            ));
         }
         let per_mass = |x: P::Scalar| P::Scalar::from_f64(x.to_f64() / unit.to_f64());
         // Both within `2¹⁴`.
@@ -345,7 +349,10 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 }
             }
         }
-        let gram = ldl(&gram, finite_inverse).ok_or(Error::InvalidParameter)?;
+        let gram = ldl(&gram, finite_inverse).ok_or(invalid(
+            "length",
+            "long enough for the strain projection to be resolved",
+        ))?;
         for i in 0..K {
             for d in 0..3 {
                 rope.gram[i][d] = P::Scalar::from_f64(gram[i][d]);
@@ -521,7 +528,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// already beyond; the old settings stay.
     pub fn set_settings(&mut self, settings: Settings<P, I>) -> Result<(), Error> {
         settings.check()?;
-        check_inside(&self.pos, settings.bounds)?;
+        check_inside(&self.pos, settings.bounds, "control point")?;
         let before = core::mem::replace(&mut self.settings, settings);
         if let Err(e) = self.plan_damping() {
             self.settings = before;
@@ -550,7 +557,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// when the bound, or the bending's band over the mass unit (`EI / m̄` times entries
     /// up to `36 / ds³`), is beyond the format. Nothing changes on an error.
     pub fn set_bending(&mut self, ei: P::Scalar) -> Result<(), Error> {
-        check_non_negative(ei)?;
+        check_non_negative(ei, "bending stiffness EI")?;
         let before = (self.bending, self.bend);
         self.bending = ei;
         let ds = self.length.to_f64() / (K - 3) as f64;
@@ -588,7 +595,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         self.pinned[i] = pinned;
         if self.pinned.iter().all(|&p| p) {
             self.pinned = before;
-            return Err(Error::InvalidParameter);
+            return Err(invalid("pins", "leaving at least one control point free"));
         }
         if let Err(e) = self.refactor() {
             self.pinned = before;
@@ -609,8 +616,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// (beyond the safe range or [`Settings::bounds`]).
     pub fn set_position(&mut self, i: usize, p: P) -> Result<(), Error> {
         check_index(i, K)?;
-        check_points(&[p])?;
-        check_inside(&[p], self.settings.bounds)?;
+        check_points(&[p], "position")?;
+        check_inside(&[p], self.settings.bounds, "position")?;
         self.pos[i] = p;
         self.history = None;
         Ok(())
@@ -622,7 +629,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// [`Error::IndexOutOfRange`]; [`Error::NonFinite`] / [`Error::OutOfRange`] for `v`.
     pub fn set_velocity(&mut self, i: usize, v: P) -> Result<(), Error> {
         check_index(i, K)?;
-        check_points(&[v])?;
+        check_points(&[v], "velocity")?;
         self.vel[i] = v;
         self.history = None;
         Ok(())
@@ -637,11 +644,11 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// or [`Settings::bounds`]) or its velocity.
     pub fn move_pinned(&mut self, i: usize, p: P, dt: P::Scalar) -> Result<(), Error> {
         check_index(i, K)?;
-        check_positive(dt)?;
-        check_points(&[p])?;
-        check_inside(&[p], self.settings.bounds)?;
+        check_positive(dt, "dt")?;
+        check_points(&[p], "position")?;
+        check_inside(&[p], self.settings.bounds, "position")?;
         let v = (p - self.pos[i]) * (P::Scalar::ONE / dt);
-        check_points(&[v])?;
+        check_points(&[v], "velocity")?;
         (self.pos[i], self.vel[i]) = (p, v);
         self.history = None;
         Ok(())
@@ -676,9 +683,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// [`Error::NonFinite`] / [`Error::OutOfRange`] for `f`; [`Error::InvalidParameter`] for
     /// a non-finite `s`.
     pub fn apply_force(&mut self, s: P::Scalar, f: P) -> Result<(), Error> {
-        check_points(&[f])?;
+        check_points(&[f], "force")?;
         if !s.is_finite() {
-            return Err(Error::InvalidParameter);
+            return Err(Error::NonFinite { name: "arc length" });
         }
         // The weights over the mass unit, in `f64`: no division in the format.
         let (first, w) = self.basis_at(s);
@@ -1485,7 +1492,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         forces: &mut F,
         contacts: Option<&Contacts<'_, P>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        check_non_negative(dt)?;
+        check_non_negative(dt, "dt")?;
         let rate = self.omega + self.gamma + self.settings.damping;
         let floor = contacts.map_or(P::Scalar::ZERO, |c| {
             let fastest = self
@@ -1523,7 +1530,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// # Errors
     /// As [`step`](Self::step).
     pub fn step_once(&mut self, h: P::Scalar) -> Result<(), Error> {
-        check_non_negative(h)?;
+        check_non_negative(h, "h")?;
         self.substeps(1, h, &mut (), None).map(drop)
     }
 
@@ -1586,8 +1593,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         }
         let bounds = self.settings.bounds;
         // A NaN or an infinity is beyond any bounds.
-        let sane =
-            check_inside(&self.pos, bounds).is_ok() && check_inside(&self.vel, bounds).is_ok();
+        let sane = check_inside(&self.pos, bounds, "control point").is_ok()
+            && check_inside(&self.vel, bounds, "velocity").is_ok();
         if sane {
             // The applied forces are spent; on a refused step they stay for the next.
             self.extra = [P::default(); K];

@@ -5,6 +5,7 @@
 //! from a particle to itself, a repeated pair, a zero rest length or more springs than the
 //! compile-time capacity is an [`Error`] then, never later in the game loop.
 
+use crate::error::invalid;
 use crate::error::{check_index, check_non_negative, check_positive};
 use crate::{Error, Point, Scalar};
 
@@ -56,7 +57,10 @@ impl<S: Scalar> Snap<S> {
             Snap::Never => Ok(self),
             Snap::Stretch(ratio) if ratio > S::ONE && ratio.is_finite() => Ok(self),
             Snap::Tension(force) if force > S::ZERO && force.is_finite() => Ok(self),
-            _ => Err(Error::InvalidParameter),
+            _ => Err(invalid(
+                "snap",
+                "a stretch ratio above 1 or a positive tension, finite",
+            )),
         }
     }
 
@@ -101,8 +105,8 @@ impl<S: Scalar> Material<S> {
     /// [`Error::InvalidParameter`] unless the stiffness is positive and finite and the
     /// damping non-negative and finite.
     pub fn check(&self) -> Result<(), Error> {
-        check_positive(self.stiffness)?;
-        check_non_negative(self.damping)?;
+        check_positive(self.stiffness, "stiffness")?;
+        check_non_negative(self.damping, "damping")?;
         Ok(())
     }
 }
@@ -388,7 +392,7 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         material: Material<S>,
     ) -> Result<Self, Error> {
         if k == 0 {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("neighbourhood", "at least 1"));
         }
         let mut s = Springs::new(material);
         for d in 1..=k.min(positions.len().saturating_sub(1)) {
@@ -415,7 +419,10 @@ impl<S: Scalar, const CAP: usize> Springs<S, CAP> {
         material: Material<S>,
     ) -> Result<Self, Error> {
         if k == 0 || u == 0 || v == 0 || u.checked_mul(v) != Some(positions.len()) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "grid size",
+                "non-zero, with u · v equal to the particle count",
+            ));
         }
         let k = k.min((u - 1) + (v - 1));
         let mut s = Springs::new(material);
@@ -765,8 +772,11 @@ mod tests {
             (1.0, f32::INFINITY),
         ] {
             let m = Material { stiffness, damping };
-            assert_eq!(m.check(), Err(Error::InvalidParameter));
-            assert_eq!(s.clone().set_material(m), Err(Error::InvalidParameter));
+            assert!(matches!(m.check(), Err(Error::InvalidParameter { .. })));
+            assert!(matches!(
+                s.clone().set_material(m),
+                Err(Error::InvalidParameter { .. })
+            ));
         }
     }
 
@@ -785,9 +795,9 @@ mod tests {
         let huge = Springs::<f32, 15>::surface_grid(&grid, 3, 2, usize::MAX, mat()).unwrap();
         assert_eq!(huge.as_slice(), all.as_slice());
         assert_eq!(huge.spring_count(), 15);
-        assert_eq!(
+        assert!(matches!(
             Springs::<f32, 15>::surface_grid(&grid[..0], 0, 2, 1, mat()).err(),
-            Some(Error::InvalidParameter)
-        );
+            Some(Error::InvalidParameter { .. })
+        ));
     }
 }

@@ -30,6 +30,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
+use crate::error::invalid;
 use crate::smooth::natural_controls;
 use crate::{Error, Point, Scalar, Smoothing, Vec3};
 
@@ -71,7 +72,7 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
     pub fn new(smoothing: Smoothing, count: usize) -> Result<Self, Error> {
         const { assert!(K >= 2 && K <= 255, "a surface row has 2 to 255 particles") };
         if !(2..=N).contains(&count) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("count", "from 2 to the table's particle count"));
         }
         let spans = match smoothing {
             Smoothing::Bezier => 1,
@@ -229,7 +230,7 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     normals: &mut [Vec3<S>],
 ) -> Result<usize, Error> {
     if tu.smoothing != tv.smoothing {
-        return Err(Error::InvalidParameter);
+        return Err(invalid("tables", "of one smoothing in both directions"));
     }
     let (nu, nv) = (tu.count, tv.count);
     let needed = nu * nv;
@@ -413,10 +414,10 @@ mod tests {
         let a = SurfaceTable::<f32, 4, 8>::new(Smoothing::BSpline, 4).unwrap();
         let b = SurfaceTable::<f32, 4, 8>::new(Smoothing::CatmullRom, 4).unwrap();
         let (mut pos, mut nor) = ([Vec3::default(); 16], [Vec3::default(); 15]);
-        assert_eq!(
+        assert!(matches!(
             sample(&g, &a, &b, &mut pos, &mut nor),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
         assert!(matches!(
             sample(&g, &a, &a, &mut pos, &mut nor),
             Err(Error::BufferTooSmall {

@@ -3,6 +3,7 @@
 
 use crate::body::Body;
 use crate::contact::Contacts;
+use crate::error::invalid;
 use crate::error::{
     check_index, check_inside, check_inv_mass, check_non_negative, check_points, check_positive,
 };
@@ -118,7 +119,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         topology: T,
         settings: Settings<P, I>,
     ) -> Result<Self, Error> {
-        check_points(Sh::flat(&positions))?;
+        check_points(Sh::flat(&positions), "positions")?;
         for &w in Sh::flat(&inv_mass) {
             check_inv_mass(w)?;
         }
@@ -135,7 +136,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return Err(error);
         }
         settings.check()?;
-        check_inside(Sh::flat(&positions), settings.bounds)?;
+        check_inside(Sh::flat(&positions), settings.bounds, "positions")?;
         let mut system = MassSpring {
             state: State {
                 pos: positions,
@@ -216,7 +217,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// already beyond; the old settings stay.
     pub fn set_settings(&mut self, settings: Settings<P, I>) -> Result<(), Error> {
         settings.check()?;
-        check_inside(self.positions(), settings.bounds)?;
+        check_inside(self.positions(), settings.bounds, "positions")?;
         self.per_rate = substeps_per_rate(&settings.integrator, settings.accuracy);
         self.settings = settings;
         Ok(())
@@ -230,8 +231,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// (beyond the safe range or [`Settings::bounds`]).
     pub fn set_position(&mut self, i: usize, p: P) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_points(&[p])?;
-        check_inside(&[p], self.settings.bounds)?;
+        check_points(&[p], "position")?;
+        check_inside(&[p], self.settings.bounds, "position")?;
         Sh::flat_mut(&mut self.state.pos)[i] = p;
         Ok(())
     }
@@ -260,11 +261,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// Nothing changes on an error.
     pub fn move_pinned(&mut self, i: usize, p: P, dt: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_positive(dt)?;
-        check_points(&[p])?;
-        check_inside(&[p], self.settings.bounds)?;
+        check_positive(dt, "dt")?;
+        check_points(&[p], "position")?;
+        check_inside(&[p], self.settings.bounds, "p")?;
         let v = (p - Sh::flat(&self.state.pos)[i]) * (P::Scalar::ONE / dt);
-        check_points(&[v])?;
+        check_points(&[v], "velocity")?;
         Sh::flat_mut(&mut self.state.pos)[i] = p;
         Sh::flat_mut(&mut self.state.vel)[i] = v;
         Ok(())
@@ -279,7 +280,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// positive and finite, or whose mass `1 / inv_mass` is beyond [`Scalar::SAFE_RANGE`].
     pub fn let_go(&mut self, i: usize, inv_mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_positive(check_inv_mass(inv_mass)?)?;
+        check_positive(check_inv_mass(inv_mass)?, "inverse mass")?;
         Sh::flat_mut(&mut self.inv_mass)[i] = inv_mass;
         self.update_spring_rate();
         Ok(())
@@ -297,14 +298,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// [`Error::Pinned`] for a pinned particle (a hand holds it: the weight would not show).
     pub fn hang(&mut self, i: usize, mass: P::Scalar) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_positive(mass)?;
+        check_positive(mass, "mass")?;
         let w = Sh::flat(&self.inv_mass)[i];
         if w <= P::Scalar::ZERO {
             return Err(Error::Pinned { index: i });
         }
         let heavier = P::Scalar::ONE / (P::Scalar::ONE / w + mass);
         if !(heavier > P::Scalar::ZERO && check_inv_mass(heavier).is_ok()) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "hung mass",
+                "one the format can add to the particle (Q16: a total of at most 13 107)",
+            ));
         }
         Sh::flat_mut(&mut self.inv_mass)[i] = heavier;
         self.update_spring_rate();
@@ -322,7 +326,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// particle's own. Nothing changes on an error.
     pub fn release(&mut self, i: usize, mass: P::Scalar) -> Result<Body<P>, Error> {
         check_index(i, Sh::LEN)?;
-        check_positive(mass)?;
+        check_positive(mass, "mass")?;
         let w = Sh::flat(&self.inv_mass)[i];
         if w <= P::Scalar::ZERO {
             return Err(Error::Pinned { index: i });
@@ -330,7 +334,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         let left = P::Scalar::ONE / w - mass;
         let lighter = P::Scalar::ONE / left;
         if !(left > P::Scalar::ZERO && lighter.is_finite() && lighter > P::Scalar::ZERO) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("let-go mass", "less than the particle's mass"));
         }
         Sh::flat_mut(&mut self.inv_mass)[i] = lighter;
         self.update_spring_rate();
@@ -383,7 +387,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// [`Error::Pinned`] for a pinned particle (its velocity stays 0).
     pub fn set_velocity(&mut self, i: usize, v: P) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_points(&[v])?;
+        check_points(&[v], "velocity")?;
         if self.inv_masses()[i] <= P::Scalar::ZERO {
             return Err(Error::Pinned { index: i });
         }
@@ -399,7 +403,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// for the velocity it would give.
     pub fn apply_impulse(&mut self, i: usize, j: P) -> Result<(), Error> {
         check_index(i, Sh::LEN)?;
-        check_points(&[j])?;
+        check_points(&[j], "impulse")?;
         let w = self.inv_masses()[i];
         if w <= P::Scalar::ZERO {
             return Ok(());
@@ -481,7 +485,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         dt: P::Scalar,
         floor: P::Scalar,
     ) -> Result<(u16, P::Scalar, bool), Error> {
-        check_non_negative(dt)?;
+        check_non_negative(dt, "dt")?;
         plan(
             dt,
             self.spring_rate + self.settings.damping,
@@ -625,7 +629,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         h: P::Scalar,
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let n = u16::from(check_non_negative(h)? > P::Scalar::ZERO);
+        let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
         let saturated = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,

@@ -1,5 +1,6 @@
 //! The game-loop helper: a fixed simulation step fed by whatever the frame took.
 
+use crate::error::invalid;
 use crate::{Error, Scalar};
 
 /// Turns variable frame times into a whole number of fixed simulation steps.
@@ -40,11 +41,14 @@ impl<S: Scalar> FixedTimestep<S> {
     /// `max_frame / step <= MAX_STEPS_PER_FRAME`.
     pub fn new(step: S, max_frame: S) -> Result<Self, Error> {
         if !(step > S::ZERO && step <= max_frame && max_frame.is_finite()) {
-            return Err(Error::InvalidParameter);
+            return Err(invalid("step", "> 0 and at most the finite max_frame"));
         }
         let max_steps = (max_frame / step).ceil_usize(usize::MAX);
         if max_steps > MAX_STEPS_PER_FRAME as usize {
-            return Err(Error::InvalidParameter);
+            return Err(invalid(
+                "max_frame",
+                "at most 4 096 steps (MAX_STEPS_PER_FRAME)",
+            ));
         }
         Ok(FixedTimestep {
             step,

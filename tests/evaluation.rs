@@ -242,5 +242,8 @@ fn q16_error_stays_flat_until_the_range_ends() {
         Vec2::<Q16>::from_f64(0.0, 0.0),
         Vec2::from_f64(17_000.0, 0.0),
     ];
-    assert_eq!(Bezier::new(far).err(), Some(Error::OutOfRange));
+    assert!(matches!(
+        Bezier::new(far).err(),
+        Some(Error::OutOfRange { .. })
+    ));
 }

@@ -49,7 +49,10 @@ fn bad_tolerances_and_small_buffers_are_errors() {
     ])
     .unwrap();
     for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-        assert_eq!(flatten::segments(&c, bad), Err(Error::InvalidParameter));
+        assert!(matches!(
+            flatten::segments(&c, bad),
+            Err(Error::InvalidParameter { .. })
+        ));
     }
     let mut out = [Vec2::default(); 2];
     assert!(matches!(

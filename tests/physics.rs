@@ -525,9 +525,18 @@ fn hitches_and_bad_time_steps_are_defined() {
     })
     .unwrap();
     let before = sys.clone();
-    assert_eq!(sys.step(f64::NAN), Err(Error::InvalidParameter));
-    assert_eq!(sys.step(-0.1), Err(Error::InvalidParameter));
-    assert_eq!(sys.step(f64::INFINITY), Err(Error::InvalidParameter));
+    assert!(matches!(
+        sys.step(f64::NAN),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        sys.step(-0.1),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        sys.step(f64::INFINITY),
+        Err(Error::InvalidParameter { .. })
+    ));
     assert_eq!(sys.positions(), before.positions());
     let zero = sys.step(0.0).unwrap();
     assert_eq!((zero.substeps, zero.simulated), (0, 0.0));

@@ -47,9 +47,11 @@ fn a_refused_calibration_leaves_the_rope_as_it_was() {
         f64::NAN,
         f64::INFINITY,
     ] {
-        assert_eq!(
-            rope.calibrate_length(Smoothing::BSpline, target, 1.0 / 60.0, 10),
-            Err(Error::InvalidParameter),
+        assert!(
+            matches!(
+                rope.calibrate_length(Smoothing::BSpline, target, 1.0 / 60.0, 10),
+                Err(Error::InvalidParameter { .. })
+            ),
             "{target}"
         );
         assert_eq!(rope.positions(), &before.0[..]);
@@ -530,4 +532,52 @@ fn a_q16_rope_yanked_past_the_format_comes_back() {
             assert!(off < 2.0, "held at {far} px: {off} px from the rest shape");
         }
     }
+}
+
+/// Every error a first program met says which value and which limit (they all used to read
+/// "parameter is zero, negative or not finite", whatever the cause).
+#[test]
+fn errors_name_the_value_and_the_limit() {
+    let text = |e: Error| e.to_string();
+    let steps = FixedTimestep::new(1.0f32 / 60.0, 100.0).unwrap_err();
+    assert!(text(steps).contains("max_frame") && text(steps).contains("4 096"));
+    let far = Rope::<Vec2<Q16>, 8>::new(
+        Vec2::from_f64(0.0, 0.0),
+        Vec2::from_f64(20_000.0, 0.0),
+        Q16::ONE,
+        Material {
+            stiffness: Q16::ONE,
+            damping: Q16::ZERO,
+        },
+        Settings::default(),
+    )
+    .unwrap_err();
+    let far = text(far);
+    assert!(
+        far.contains("16383") && far.contains("smaller units"),
+        "{far}"
+    );
+    let same = hanging_rope_at(Vec2::new(1.0, 1.0)).unwrap_err();
+    assert!(
+        text(same).contains("end") && text(same).contains("start"),
+        "{same}"
+    );
+    let mut rope = hanging_rope(1.0);
+    let (mut points, mut pieces) = ([Vec2::default(); 64], [dunas::breaking::Piece::EMPTY; 8]);
+    rope.draw(Smoothing::BSpline, &mut points, &mut pieces)
+        .unwrap();
+    let whole = rope
+        .cut(&points, &pieces, Vec2::new(3.2, 1.0), Vec2::new(3.2, -1.0))
+        .unwrap_err();
+    assert!(text(whole).contains("&pieces[..count]"), "{whole}");
+    let tolerance = dunas::lod::segments(
+        &Bezier::new([Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 1.0)]).unwrap(),
+        -1.0,
+    )
+    .unwrap_err();
+    assert_eq!(text(tolerance), "tolerance must be finite and > 0");
+}
+
+fn hanging_rope_at(end: Vec2<f64>) -> Result<Rope<Vec2<f64>, 8>, Error> {
+    Rope::new(end, end, 1.0, material(), Settings::default())
 }

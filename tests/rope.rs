@@ -132,12 +132,12 @@ mod q16 {
             m,
             Settings::default(),
         );
-        assert_eq!(far.err(), Some(Error::OutOfRange));
+        assert!(matches!(far.err(), Some(Error::OutOfRange { .. })));
         let mut rope = catapult::<Q16>(0.0);
-        assert_eq!(
+        assert!(matches!(
             rope.set_position(0, Vec2::from_f64(30_000.0, 0.0)),
-            Err(Error::OutOfRange)
-        );
+            Err(Error::OutOfRange { .. })
+        ));
     }
 
     #[test]
@@ -183,7 +183,10 @@ mod q16 {
         let v7 = rope.velocities()[7];
         let blow = rope.apply_impulse(7, Vec2::from_f64(16_000.0, 0.0));
         assert!(
-            matches!(blow, Err(Error::NonFinite | Error::OutOfRange)),
+            matches!(
+                blow,
+                Err(Error::NonFinite { .. } | Error::OutOfRange { .. })
+            ),
             "{blow:?}"
         );
         assert_eq!(rope.velocities()[7], v7);
@@ -268,10 +271,10 @@ fn calibration_makes_the_drawn_curve_the_intended_length() {
         assert!(residual < 1e-2 && ((after - target) / target).abs() < 1e-2);
     }
     let (mut rope, _) = sagging(Smoothing::Bezier);
-    assert_eq!(
+    assert!(matches!(
         rope.calibrate_length(Smoothing::Bezier, -1.0, 0.1, 1),
-        Err(Error::InvalidParameter)
-    );
+        Err(Error::InvalidParameter { .. })
+    ));
 }
 
 #[test]
@@ -395,24 +398,24 @@ fn fixed_timestep_clamps_hitches_and_ignores_bad_frames() {
     for bad in [f64::NAN, -1.0, f64::INFINITY, 0.0] {
         assert_eq!(clock.advance(bad), 0);
     }
-    assert_eq!(
+    assert!(matches!(
         FixedTimestep::new(0.0f64, 1.0),
-        Err(Error::InvalidParameter)
-    );
-    assert_eq!(
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
         FixedTimestep::new(0.1f64, 0.05),
-        Err(Error::InvalidParameter)
-    );
-    assert_eq!(
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
         FixedTimestep::new(0.1f64, f64::NAN),
-        Err(Error::InvalidParameter)
-    );
+        Err(Error::InvalidParameter { .. })
+    ));
     // A step so small against the longest frame that `acc - step` would round to `acc`:
     // refused, instead of a frame that never ends.
-    assert_eq!(
+    assert!(matches!(
         FixedTimestep::new(1e-10f32, 1.0),
-        Err(Error::InvalidParameter)
-    );
+        Err(Error::InvalidParameter { .. })
+    ));
     let mut fine = FixedTimestep::new(1.0f32 / 4096.0, 1.0).unwrap();
     assert_eq!(fine.advance(1.0), 4096);
 }
@@ -574,7 +577,10 @@ fn a_hanging_rope_starts_and_stays_on_its_catenary() {
         material,
         settings,
     );
-    assert_eq!(too_short.err(), Some(Error::InvalidParameter));
+    assert!(matches!(
+        too_short.err(),
+        Some(Error::InvalidParameter { .. })
+    ));
     let vertical = Rope::<Vec2<f64>, 8>::hanging(
         Vec2::new(0.0, 0.0),
         Vec2::new(0.0, -5.0),
@@ -583,7 +589,10 @@ fn a_hanging_rope_starts_and_stays_on_its_catenary() {
         material,
         settings,
     );
-    assert_eq!(vertical.err(), Some(Error::InvalidParameter));
+    assert!(matches!(
+        vertical.err(),
+        Some(Error::InvalidParameter { .. })
+    ));
     let weightless = Rope::<Vec2<f64>, 8>::hanging(
         Vec2::new(0.0, 0.0),
         Vec2::new(5.0, 0.0),
@@ -592,7 +601,10 @@ fn a_hanging_rope_starts_and_stays_on_its_catenary() {
         material,
         Settings::default(),
     );
-    assert_eq!(weightless.err(), Some(Error::InvalidParameter));
+    assert!(matches!(
+        weightless.err(),
+        Some(Error::InvalidParameter { .. })
+    ));
 }
 
 /// A particle mass beyond the safe range is refused wherever it comes in (as an inverse
@@ -614,11 +626,23 @@ fn masses_beyond_the_safe_range_are_refused() {
     )
     .unwrap();
     let before = rope.inv_masses().to_vec();
-    assert_eq!(rope.set_inv_mass(3, 1e-310), Err(Error::InvalidParameter));
-    assert_eq!(rope.let_go(3, 1e-310), Err(Error::InvalidParameter));
-    assert_eq!(rope.hang(3, f64::MAX), Err(Error::InvalidParameter));
+    assert!(matches!(
+        rope.set_inv_mass(3, 1e-310),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        rope.let_go(3, 1e-310),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        rope.hang(3, f64::MAX),
+        Err(Error::InvalidParameter { .. })
+    ));
     assert_eq!(rope.inv_masses(), &before[..]);
-    assert_eq!(rope.set_inv_mass(3, 1e-151), Err(Error::InvalidParameter));
+    assert!(matches!(
+        rope.set_inv_mass(3, 1e-151),
+        Err(Error::InvalidParameter { .. })
+    ));
     assert!(rope.set_inv_mass(3, 1e-149).is_ok() && rope.hang(4, 1e149).is_ok());
     let heavy = Rope::<Vec2<f64>, 8>::new(
         Vec2::new(0.0, 0.0),
@@ -627,7 +651,7 @@ fn masses_beyond_the_safe_range_are_refused() {
         material,
         Settings::default(),
     );
-    assert_eq!(heavy.err(), Some(Error::InvalidParameter));
+    assert!(matches!(heavy.err(), Some(Error::InvalidParameter { .. })));
     #[cfg(feature = "fixed")]
     {
         use dunas::Q16;
@@ -644,12 +668,15 @@ fn masses_beyond_the_safe_range_are_refused() {
             Settings::default(),
         )
         .unwrap();
-        assert_eq!(
+        assert!(matches!(
             rope.set_inv_mass(3, Q16::from_bits(4)),
-            Err(Error::InvalidParameter)
-        );
+            Err(Error::InvalidParameter { .. })
+        ));
         assert!(rope.set_inv_mass(3, Q16::from_bits(5)).is_ok());
-        assert_eq!(rope.hang(4, q(15_000.0)), Err(Error::InvalidParameter));
+        assert!(matches!(
+            rope.hang(4, q(15_000.0)),
+            Err(Error::InvalidParameter { .. })
+        ));
         assert!(rope.hang(4, q(14_000.0)).is_ok());
     }
 }

@@ -319,13 +319,22 @@ fn bad_input_is_an_error() {
         SplineRope::<Vec2<f64>, 5>::new(start, end, mass, m, settings(G, 0.0)).map(|_| ())
     };
     let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0));
-    assert_eq!(new(a, b, 0.0, ok), Err(Error::InvalidParameter));
-    assert_eq!(new(a, b, f64::NAN, ok), Err(Error::InvalidParameter));
+    assert!(matches!(
+        new(a, b, 0.0, ok),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        new(a, b, f64::NAN, ok),
+        Err(Error::InvalidParameter { .. })
+    ));
     let soft = Material {
         stiffness: 0.0,
         damping: 0.0,
     };
-    assert_eq!(new(a, b, 1.0, soft), Err(Error::InvalidParameter));
+    assert!(matches!(
+        new(a, b, 1.0, soft),
+        Err(Error::InvalidParameter { .. })
+    ));
     assert!(matches!(
         new(a, a, 1.0, ok),
         Err(Error::ZeroRestLength { .. })
@@ -344,7 +353,10 @@ fn bad_input_is_an_error() {
     assert!(rope.apply_force(f64::NAN, Vec2::new(1.0, 0.0)).is_err());
     let bound = rope.stiffness_bound();
     for ei in [-1.0, f64::NAN, f64::INFINITY] {
-        assert_eq!(rope.set_bending(ei), Err(Error::InvalidParameter));
+        assert!(matches!(
+            rope.set_bending(ei),
+            Err(Error::InvalidParameter { .. })
+        ));
     }
     assert_eq!((rope.bending(), rope.stiffness_bound()), (0.0, bound));
     // Bounds hold the control points: no setting or move puts one beyond them.
@@ -352,24 +364,27 @@ fn bad_input_is_an_error() {
         bounds: 0.5,
         ..*rope.settings()
     };
-    assert_eq!(rope.set_settings(tight), Err(Error::OutOfRange));
-    assert_eq!(
+    assert!(matches!(
+        rope.set_settings(tight),
+        Err(Error::OutOfRange { .. })
+    ));
+    assert!(matches!(
         rope.set_position(1, Vec2::new(2e150, 0.0)),
-        Err(Error::OutOfRange)
-    );
+        Err(Error::OutOfRange { .. })
+    ));
     let near = Settings {
         bounds: 2.0,
         ..*rope.settings()
     };
     rope.set_settings(near).unwrap();
-    assert_eq!(
+    assert!(matches!(
         rope.set_position(1, Vec2::new(3.0, 0.0)),
-        Err(Error::OutOfRange)
-    );
-    assert_eq!(
+        Err(Error::OutOfRange { .. })
+    ));
+    assert!(matches!(
         rope.move_pinned(0, Vec2::new(0.0, -3.0), 0.1),
-        Err(Error::OutOfRange)
-    );
+        Err(Error::OutOfRange { .. })
+    ));
     // A refused step leaves everything as it was, the force applied for it too.
     rope.apply_force(0.5, Vec2::new(0.0, 1e9)).unwrap();
     let before = format!("{rope:?}");
@@ -379,7 +394,10 @@ fn bad_input_is_an_error() {
     for i in 1..3 {
         all.set_pinned(i, true).unwrap();
     }
-    assert_eq!(all.set_pinned(3, true), Err(Error::InvalidParameter));
+    assert!(matches!(
+        all.set_pinned(3, true),
+        Err(Error::InvalidParameter { .. })
+    ));
     // In `Q16` a mass unit below the format's resolution: a span's share of the least mass,
     // and `EA / 2¹⁴` too.
     let (start, end) = (
@@ -397,10 +415,10 @@ fn bad_input_is_an_error() {
         };
         SplineRope::<Vec2<Q16>, 8>::new(start, end, Q16::from_bits(1), stretch, s)
     };
-    assert_eq!(
+    assert!(matches!(
         faint(Q16::ratio(1, 16)).map(drop),
-        Err(Error::InvalidParameter)
-    );
+        Err(Error::InvalidParameter { .. })
+    ));
     // A bending band past the format over the mass unit: a 70 px rope of 0.07 mass units
     // and 16 control points at `EI = 2000` has entries up to `24 / ds³ · EI / m̄`, 57 000.
     let stretch = Material {
