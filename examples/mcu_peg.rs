@@ -17,6 +17,7 @@
 mod device;
 
 use device::{Meter, Report};
+use dunas::contact::Push;
 use dunas::prelude::*;
 
 /// The catapult rope swinging against a peg, with a rope 2 pixels thick (so the step takes
@@ -32,12 +33,12 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         bits,
         &mut rope,
         |r| {
-            let mut push = [Vec2::new(S::ZERO, S::ZERO)];
+            let mut push = [Push::default()];
             let contacts =
                 Contacts::new(&peg, S::from_i16(2), Touch::Drawn(Smoothing::CatmullRom))?
-                    .with_impulses(&mut push);
+                    .with_pushes(&mut push);
             let info = r.step_touching(dt, (), &contacts);
-            touching += u32::from(push[0] != Vec2::new(S::ZERO, S::ZERO));
+            touching += u32::from(push[0].impulse != Vec2::new(S::ZERO, S::ZERO));
             info
         },
         |canvas, view| canvas.points(view, &[centre], b'@'),

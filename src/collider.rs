@@ -20,7 +20,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
-use crate::error::{check_non_negative, check_points};
+use crate::error::{check_non_negative, check_points, check_positive};
 use crate::error::{invalid, out_of_range};
 use crate::{Aabb, Error, Point, Scalar, Vec2};
 
@@ -65,6 +65,8 @@ pub struct Collider<P: Point> {
     static_friction: P::Scalar,
     kinetic_friction: P::Scalar,
     restitution: P::Scalar,
+    /// 1 / the body's mass; 0 for a kinematic collider (infinitely heavy).
+    inv_mass: P::Scalar,
 }
 
 /// `v / |v|`, or `None` when `v` is too short to have a direction in the format.
@@ -106,6 +108,7 @@ impl<P: Point> Collider<P> {
             static_friction: P::Scalar::ZERO,
             kinetic_friction: P::Scalar::ZERO,
             restitution: P::Scalar::ZERO,
+            inv_mass: P::Scalar::ZERO,
         }
     }
 
@@ -206,6 +209,31 @@ impl<P: Point> Collider<P> {
         }
         self.restitution = restitution;
         Ok(self)
+    }
+
+    /// The same collider as a free body of `mass`, for two-way coupling: when its
+    /// [`Push`](crate::contact::Push) is reported
+    /// ([`Contacts::with_pushes`](crate::contact::Contacts::with_pushes)), each contact is
+    /// resolved between the rope or cloth and a body of this mass, which takes its share of
+    /// every push at once. Without a report it stays kinematic (infinitely heavy).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a mass that is not finite and positive, or whose
+    /// inverse or itself is beyond the safe range (`Q16`: masses from 1/16 383 to 16 383).
+    pub fn with_mass(mut self, mass: P::Scalar) -> Result<Self, Error> {
+        const EXPECTED: &str = "finite and > 0, it and its inverse within the safe range";
+        let inv_mass = P::Scalar::ONE / check_positive(mass, "mass")?;
+        if !(mass.in_safe_range() && inv_mass.in_safe_range() && inv_mass > P::Scalar::ZERO) {
+            return Err(invalid("mass", EXPECTED));
+        }
+        self.inv_mass = inv_mass;
+        Ok(self)
+    }
+
+    /// 1 / the mass given by [`with_mass`](Self::with_mass); 0 for a kinematic collider.
+    #[inline]
+    pub fn inv_mass(&self) -> P::Scalar {
+        self.inv_mass
     }
 
     /// The velocity given by [`moving`](Self::moving).

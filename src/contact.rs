@@ -32,9 +32,12 @@
 //!   spacing; a collider the drawn rope touches costs about 4× what it costs at the
 //!   particles (`docs/summary.md` (g): 711 against 175 ns a frame for an 8-particle rope).
 //!
-//! **Two-way coupling.** [`Contacts::with_impulses`] reports, after each step, the impulse
-//! the rope or cloth gave each collider: add it, divided by the body's mass, to the velocity
-//! of the ball, crate or bat the collider stands for.
+//! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
+//! rope or cloth gave each collider and, for a collider with a mass
+//! ([`Collider::with_mass`]), how far its body was moved: add them to the velocity (divided
+//! by the mass) and the position of the ball, crate or bat the collider stands for. Each
+//! contact is then resolved between the rope and a body of that mass in the same substep, so
+//! with restitution 0 the pair never gains energy, whatever the mass ratio.
 //!
 //! **No tunnelling.** With a thickness `r > 0`, a step takes enough substeps that no particle
 //! moves more than `r` against a collider in one substep, judged from the speeds at the start
@@ -79,7 +82,22 @@ pub struct Contacts<'a, P: Point> {
     colliders: &'a [Collider<P>],
     thickness: P::Scalar,
     touch: Touch,
-    impulses: &'a [Cell<P>],
+    pushes: &'a [Cell<Push<P>>],
+}
+
+/// What a step's contacts did to one collider: the report
+/// [`Contacts::with_pushes`] fills, for the game to move the body the collider stands for.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Push<P> {
+    /// The impulse (mass × velocity, in the system's units) the contacts gave the collider:
+    /// the opposite of what they gave the rope or cloth. Divided by the body's mass, it is
+    /// the velocity change the body gets back.
+    pub impulse: P,
+    /// For a collider with a mass ([`Collider::with_mass`]): how far its body moved during
+    /// the step beyond the path its velocity set (each impulse acting from the substep it
+    /// came in, and its share of each push out of the rope); add it to the body's position.
+    /// Zero for a kinematic collider.
+    pub shift: P,
 }
 
 impl<'a, P: Point> Contacts<'a, P> {
@@ -100,71 +118,126 @@ impl<'a, P: Point> Contacts<'a, P> {
             colliders,
             thickness,
             touch,
-            impulses: &[],
+            pushes: &[],
         })
     }
 
-    /// Reports impulses: after each step, `impulses[k]` holds the impulse (mass × velocity, in
-    /// the system's units) that the step's contacts gave collider `k`, the opposite of what
-    /// they gave the rope or cloth. Divided by a body's mass, it is the velocity change the
-    /// body gets back. A step sets every entry (zero for a collider it did not touch, and all
-    /// zero when it returns an error); entries past the last collider are left alone, and
-    /// colliders past the last entry are not reported. In `Q16` an impulse past the format's
-    /// range is clamped at its limit, and the step's [`StepInfo::saturated`] says so.
+    /// Reports what the contacts did to each collider: after each step, `pushes[k]` holds
+    /// collider `k`'s [`Push`]: the impulse the contacts gave it and, for a collider with a
+    /// mass, how far its body moved beyond its planned path. A step sets every entry (zero
+    /// for a collider it did not touch, and all zero when it returns an error); entries past
+    /// the last collider are left alone, and colliders past the last entry are not
+    /// reported. In `Q16` a push past the format's range is clamped at its limit, and the
+    /// step's [`StepInfo::saturated`] says so.
+    ///
+    /// **Two-way coupling.** Place the collider where its body will be at the end of the
+    /// frame at its present velocity, give it that velocity ([`Collider::moving`]) and the
+    /// body's mass ([`Collider::with_mass`]); after the step add `shift` to the body's
+    /// position and `impulse / mass` to its velocity. Each contact is then resolved between
+    /// the rope or cloth and a body of that mass, whose velocity and place take each push at
+    /// once, in the same substep: with restitution 0 the pair never gains energy, whatever
+    /// the mass ratio (a ball 0.5 to 30 times a taut rope's mass, dropped on it at 60 Hz,
+    /// rebounds lower than it fell from: `tests/contacts.rs`). A collider without a mass is
+    /// kinematic (infinitely heavy): its `impulse` is still reported, its `shift` stays 0.
     ///
     /// ```
     /// use dunas::prelude::*;
     /// use dunas::collider::Collider;
-    /// use dunas::contact::{Contacts, Touch};
+    /// use dunas::contact::{Contacts, Push, Touch};
     ///
     /// let settings = Settings { gravity: Vec2::new(0.0, -9.8), ..Settings::default() };
     /// let material = Material { stiffness: 400.0, damping: 0.5 };
     /// let mut rope: Rope<Vec2<f32>, 8> = Rope::new(Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0), 1.0, material, settings)?;
-    /// let (mut ball, mut velocity, mass) = (Vec2::new(3.5, 1.0), Vec2::new(0.0, -4.0), 0.5);
-    /// let mut impulses = [Vec2::default(); 1];
-    /// for _ in 0..30 {
+    /// rope.set_inv_mass(7, 0.0)?; // both ends held
+    /// let (mut ball, mut velocity, mass) = (Vec2::new(3.5, 1.0), Vec2::new(0.0, -4.0), 3.0);
+    /// let mut pushes = [Push::default(); 1];
+    /// for _ in 0..60 {
     ///     ball += velocity * (1.0 / 60.0); // where the ball will be at the end of the frame
-    ///     let colliders = [Collider::ball(ball, 0.3)?.moving(velocity)?];
+    ///     let colliders = [Collider::ball(ball, 0.3)?.moving(velocity)?.with_mass(mass)?];
     ///     let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))?
-    ///         .with_impulses(&mut impulses);
-    ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
-    ///     velocity += impulses[0] * (1.0 / mass) + Vec2::new(0.0, -9.8) * (1.0 / 60.0);
+    ///         .with_pushes(&mut pushes);
+    ///     let _ = rope.step_touching(1.0 / 60.0, (), &contacts)?;
+    ///     ball += pushes[0].shift;
+    ///     velocity += pushes[0].impulse / mass + Vec2::new(0.0, -9.8) * (1.0 / 60.0);
     /// }
+    /// assert!(ball.y > -3.0); // the rope caught it
     /// # Ok::<(), dunas::Error>(())
     /// ```
-    pub fn with_impulses(self, impulses: &'a mut [P]) -> Self {
+    pub fn with_pushes(self, pushes: &'a mut [Push<P>]) -> Self {
         Contacts {
-            impulses: Cell::from_mut(impulses).as_slice_of_cells(),
+            pushes: Cell::from_mut(pushes).as_slice_of_cells(),
             ..self
         }
     }
 
-    /// Sets every reported impulse to zero (at the start of a step, and after a refused one).
-    pub(crate) fn clear_impulses(&self) {
-        for cell in self.impulses.iter().take(self.colliders.len()) {
-            cell.set(P::default());
+    /// Sets every report to zero (at the start of a step, and after a refused one).
+    pub(crate) fn clear_pushes(&self) {
+        for cell in self.pushes.iter().take(self.colliders.len()) {
+            cell.set(Push::default());
         }
     }
 
-    /// Ends a step's report: all zero after a refused step, and a `Q16` impulse clamped at
-    /// the format's limit marks the step [`saturated`](StepInfo::saturated).
+    /// Ends a step's report: all zero after a refused step, and a `Q16` push clamped at the
+    /// format's limit marks the step [`saturated`](StepInfo::saturated).
     pub(crate) fn finish_report(
         &self,
         info: Result<StepInfo<P::Scalar>, Error>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let Ok(mut info) = info else {
-            self.clear_impulses();
+            self.clear_pushes();
             return info;
         };
-        let reported = self.impulses.iter().take(self.colliders.len());
-        info.saturated |= reported.map(Cell::get).any(|j| !j.is_finite());
+        let reported = self.pushes.iter().take(self.colliders.len());
+        info.saturated |= reported
+            .map(Cell::get)
+            .any(|push| !(push.impulse.is_finite() && push.shift.is_finite()));
         Ok(info)
     }
 
-    /// Adds the momentum `given` to a rope or cloth by collider `k` to its report.
-    fn report(&self, k: usize, given: P) {
-        if let Some(cell) = self.impulses.get(k) {
-            cell.set(cell.get() - given);
+    /// Adds to collider `k`'s report the momentum `given` to the rope or cloth and the
+    /// distance `moved` its body was pushed.
+    fn report(&self, k: usize, given: P, moved: P) {
+        if let Some(cell) = self.pushes.get(k) {
+            let push = cell.get();
+            cell.set(Push {
+                impulse: push.impulse - given,
+                shift: push.shift + moved,
+            });
+        }
+    }
+
+    /// Collider `k` as a body now: its velocity and inverse mass. A collider with a mass
+    /// whose push is reported has taken every impulse of this step so far; any other moves
+    /// as the game moves it, infinitely heavy (inverse mass 0).
+    fn body(&self, k: usize, collider: &Collider<P>) -> (P, P::Scalar) {
+        match self.pushes.get(k) {
+            Some(cell) if collider.inv_mass() > P::Scalar::ZERO => (
+                collider.velocity() + cell.get().impulse * collider.inv_mass(),
+                collider.inv_mass(),
+            ),
+            _ => (collider.velocity(), P::Scalar::ZERO),
+        }
+    }
+
+    /// What carries a point into collider `k`'s frame at its end-of-step pose, `lag` seconds
+    /// before the step ends: its planned motion over the lag, less how far its body has
+    /// been moved beyond that plan.
+    fn offset(&self, k: usize, collider: &Collider<P>, lag: P::Scalar) -> P {
+        let planned = collider.velocity() * lag;
+        match self.pushes.get(k) {
+            Some(cell) if collider.inv_mass() > P::Scalar::ZERO => planned - cell.get().shift,
+            _ => planned,
+        }
+    }
+
+    /// Moves every body with a mass over a substep of `h` at its velocity now, beyond its
+    /// planned path (called before each substep's contacts).
+    pub(crate) fn advance_bodies(&self, h: P::Scalar) {
+        for (k, collider) in self.colliders.iter().enumerate() {
+            let (velocity, inv_mass) = self.body(k, collider);
+            if inv_mass > P::Scalar::ZERO {
+                self.report(k, P::default(), (velocity - collider.velocity()) * h);
+            }
         }
     }
 
@@ -213,12 +286,16 @@ impl<'a, P: Point> Contacts<'a, P> {
     ) {
         for (k, collider) in self.colliders.iter().enumerate() {
             for ((x, v), &w) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass) {
-                if w > P::Scalar::ZERO
-                    && let Some((dx, dv)) = self.response(collider, *x, *v, (h, lag))
+                if w <= P::Scalar::ZERO {
+                    continue;
+                }
+                let (body, offset) = (self.body(k, collider), self.offset(k, collider, lag));
+                if let Some((dx, dv, moved)) =
+                    self.response(collider, body, (*x, *v, w), (h, offset))
                 {
                     *x += dx;
                     *v += dv;
-                    self.report(k, dv * (P::Scalar::ONE / w));
+                    self.report(k, dv * (P::Scalar::ONE / w), moved);
                 }
             }
         }
@@ -309,7 +386,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     ) {
         let mut weights = [P::Scalar::ZERO; K];
         for (k, collider) in self.colliders.iter().enumerate() {
-            let shift = collider.velocity() * lag;
+            let shift = self.offset(k, collider, lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for span in 0..curve.span_count() {
                 let hull = curve.span_bounds(span);
@@ -323,11 +400,16 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let x = curve.point(span, t);
                 curve.weights(span, t, &mut weights);
                 let v = point_of(vel, |i| weights[i]);
-                let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
+                let Some(w) = point_inv_mass(inv_mass, |i| weights[i]) else {
+                    continue;
+                };
+                let body = self.body(k, collider);
+                let Some((dx, dv, moved)) = self.response(collider, body, (x, v, w), (h, shift))
+                else {
                     continue;
                 };
                 if let Some(given) = spread(pos, vel, inv_mass, |i| weights[i], (dx, dv)) {
-                    self.report(k, given);
+                    self.report(k, given, moved);
                 }
                 if !curve.rebuild(pos) {
                     return; // left the range: the step's guard undoes it
@@ -371,7 +453,7 @@ impl<'a, P: Point> Contacts<'a, P> {
             wv: [P::Scalar::ZERO; V],
         };
         for (k, collider) in self.colliders.iter().enumerate() {
-            let shift = collider.velocity() * lag;
+            let shift = self.offset(k, collider, lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for cell in 0..(U - 1) * (V - 1) {
                 let (cu, cv) = (cell % (U - 1), cell / (U - 1));
@@ -397,12 +479,18 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 surface.at((cu, cv), (u, v));
                 let (x, v) = (surface.point(pos), surface.point(vel));
-                let Some((dx, dv)) = self.response(collider, x, v, (h, lag)) else {
+                let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
+                let Some(mobility) = point_inv_mass(inv_mass, w) else {
                     continue;
                 };
-                let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
+                let body = self.body(k, collider);
+                let Some((dx, dv, moved)) =
+                    self.response(collider, body, (x, v, mobility), (h, shift))
+                else {
+                    continue;
+                };
                 if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
-                    self.report(k, given);
+                    self.report(k, given, moved);
                     if let Some(c) = &mut controls {
                         let grid = pos.as_chunks::<U>().0;
                         *c = net(&core::array::from_fn(|j| grid[j]));
@@ -423,38 +511,49 @@ impl<'a, P: Point> Contacts<'a, P> {
         (gap - half_diagonal < self.thickness).then(|| collider.key_scale(gap + half_diagonal))
     }
 
-    /// The position and velocity change for a point at `x` moving at `v` at the end of a
-    /// substep of `h`, or `None` when it is clear of `collider`. Friction also takes back the
-    /// sliding it stops from this substep's move (`brake · h`), so a sticking contact does
-    /// not creep.
+    /// The position and velocity change for a point at `x` moving at `v`, with inverse mass
+    /// `w` (a drawn point's: `Σ w_i² / m_i`), at the end of a substep of `h`, and how far the
+    /// collider's body moves; `None` when the point is clear of `collider`. `offset` carries
+    /// the point into the collider's frame at its end pose ([`offset`](Self::offset));
+    /// `(body_velocity, body_inv_mass)` is the collider now ([`body`](Self::body)). Against
+    /// a body of finite mass the point takes its share `w / (w + 1/M)` of the push out and of
+    /// the velocity change, the body the rest: an inelastic two-body contact. Friction also
+    /// takes back the sliding it stops from this substep's move (`brake · h`), so a sticking
+    /// contact does not creep.
     fn response(
         &self,
         collider: &Collider<P>,
-        x: P,
-        v: P,
-        (h, lag): (P::Scalar, P::Scalar),
-    ) -> Option<(P, P)> {
+        (body_velocity, body_inv_mass): (P, P::Scalar),
+        (x, v, w): (P, P, P::Scalar),
+        (h, offset): (P::Scalar, P),
+    ) -> Option<(P, P, P)> {
         let zero = P::Scalar::ZERO;
-        let (d, n) = collider.distance(x + collider.velocity() * lag);
+        let (d, n) = collider.distance(x + offset);
         if d >= self.thickness || !d.is_finite() {
             return None;
         }
-        let dx = n * (self.thickness - d);
-        let relative = v - collider.velocity();
+        let mut dx = n * (self.thickness - d);
+        let relative = v - body_velocity;
         let vn = relative.dot(n);
-        if vn >= zero {
-            return Some((dx, P::default()));
+        let (mut dv, mut moved) = (P::default(), P::default());
+        if vn < zero {
+            let push = -vn * (P::Scalar::ONE + collider.restitution());
+            let slide = relative - n * vn;
+            let speed = slide.length();
+            let (stick, kinetic) = collider.friction();
+            let brake = if speed <= stick * push {
+                slide
+            } else {
+                slide * (kinetic * push / speed)
+            };
+            (dx, dv) = (dx - brake * h, n * push - brake);
         }
-        let push = -vn * (P::Scalar::ONE + collider.restitution());
-        let slide = relative - n * vn;
-        let speed = slide.length();
-        let (stick, kinetic) = collider.friction();
-        let brake = if speed <= stick * push {
-            slide
-        } else {
-            slide * (kinetic * push / speed)
-        };
-        Some((dx - brake * h, n * push - brake))
+        if body_inv_mass > zero {
+            let share = w / (w + body_inv_mass);
+            moved = dx * (share - P::Scalar::ONE);
+            (dx, dv) = (dx * share, dv * share);
+        }
+        Some((dx, dv, moved))
     }
 }
 
@@ -523,6 +622,18 @@ fn point_of<P: Point>(points: &[P], w: impl Fn(usize) -> P::Scalar) -> P {
         .iter()
         .enumerate()
         .fold(P::default(), |acc, (i, &p)| acc + p * w(i))
+}
+
+/// The inverse mass of the drawn point with particle weights `w`, `Σ w_i² / m_i` over the
+/// free particles (what a push on that point meets), or `None` when every particle that moves
+/// it is pinned.
+fn point_inv_mass<S: Scalar>(inv_mass: &[S], w: impl Fn(usize) -> S) -> Option<S> {
+    let norm = inv_mass
+        .iter()
+        .enumerate()
+        .filter(|&(_, &m)| m > S::ZERO)
+        .fold(S::ZERO, |norm, (i, &m)| norm + w(i) * w(i) * m);
+    (norm > S::ZERO).then_some(norm)
 }
 
 /// Moves the particles so that the drawn point with particle weights `w` moves by `dx` and

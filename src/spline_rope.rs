@@ -1482,7 +1482,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         mut forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        contacts.clear_impulses();
+        contacts.clear_pushes();
         contacts.finish_report(self.step_resolving(dt, &mut forces, Some(contacts)))
     }
 
@@ -1588,6 +1588,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let lag = h * P::Scalar::from_i16((n - 1 - step) as i16);
                 let mut curve = Spans::new(&self.ext, &self.pos);
                 let (pos, vel) = (&mut self.pos, &mut self.vel);
+                contacts.advance_bodies(h);
                 contacts.resolve_spans(pos, vel, &self.inv_load, (h, lag), &mut curve);
             }
         }

@@ -578,7 +578,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let floor = contacts.rate(self.top_speed(dt), surface);
-        contacts.clear_impulses();
+        contacts.clear_pushes();
+        let mut resolve = resolve;
+        let resolve = |state: &mut State<P, Sh>,
+                       w: &Sh::PerParticle<P::Scalar>,
+                       times: (P::Scalar, P::Scalar)| {
+            contacts.advance_bodies(times.0);
+            resolve(state, w, times)
+        };
         contacts.finish_report(self.step_resolving(dt, forces, floor, resolve))
     }
 

@@ -15,7 +15,7 @@
 use dunas::Point;
 use dunas::breaking::Piece;
 use dunas::collider::Collider;
-use dunas::contact::{Contacts, Touch};
+use dunas::contact::{Contacts, Push, Touch};
 use dunas::force::{AnchorSpring, SailWind, Wind};
 use dunas::integrator::{
     ExplicitEuler, ImplicitEuler, Integrator, Rk4, SymplecticEuler, Verlet, Xpbd,
@@ -594,7 +594,7 @@ proptest! {
 }
 
 /// A collider of any kind from hostile numbers: a ball, a capsule, a half-space, a box or
-/// (in 2D) a triangle, moving or still, with friction and restitution or without.
+/// (in 2D) a triangle, moving or still, with friction, restitution and a mass or without.
 #[derive(Clone, Debug)]
 struct ColliderSpec {
     kind: u8,
@@ -605,6 +605,7 @@ struct ColliderSpec {
     velocity: Option<[f64; 3]>,
     friction: Option<(f64, f64)>,
     restitution: Option<f64>,
+    mass: Option<f64>,
 }
 
 fn collider_spec() -> impl Strategy<Value = ColliderSpec> {
@@ -615,10 +616,11 @@ fn collider_spec() -> impl Strategy<Value = ColliderSpec> {
             prop::option::of(point()),
             prop::option::of((hostile(), hostile())),
             prop::option::of(hostile()),
+            prop::option::of(hostile()),
         ),
     )
         .prop_map(
-            |((kind, a, b, c, radius), (velocity, friction, restitution))| ColliderSpec {
+            |((kind, a, b, c, radius), (velocity, friction, restitution, mass))| ColliderSpec {
                 kind,
                 a,
                 b,
@@ -627,6 +629,7 @@ fn collider_spec() -> impl Strategy<Value = ColliderSpec> {
                 velocity,
                 friction,
                 restitution,
+                mass,
             },
         )
 }
@@ -657,6 +660,9 @@ impl ColliderSpec {
         }
         if let Some(e) = self.restitution {
             collider = collider.with_restitution(P::Scalar::from_f64(e))?;
+        }
+        if let Some(m) = self.mass {
+            collider = collider.with_mass(P::Scalar::from_f64(m))?;
         }
         Ok(collider)
     }
@@ -761,19 +767,20 @@ impl Touching {
             .iter()
             .map(ColliderSpec::build)
             .collect::<Result<_, _>>()?;
-        let mut impulses = vec![P::default(); self.impulses];
+        let mut pushes = vec![Push::default(); self.impulses];
         let thickness = P::Scalar::from_f64(self.thickness);
         let contacts =
-            Contacts::new(&colliders, thickness, touch(self.touch))?.with_impulses(&mut impulses);
+            Contacts::new(&colliders, thickness, touch(self.touch))?.with_pushes(&mut pushes);
         let stepped = step(P::Scalar::from_f64(self.dt), &contacts);
-        for (k, j) in impulses.iter().enumerate() {
+        for (k, push) in pushes.iter().enumerate() {
             let clamped = stepped.is_ok_and(|info| P::Scalar::FIXED_POINT && info.saturated);
-            assert!(j.is_finite() || clamped, "impulse {k}: {j:?}");
+            let finite = push.impulse.is_finite() && push.shift.is_finite();
+            assert!(finite || clamped, "push {k}: {push:?}");
             if k >= colliders.len() || stepped.is_err() {
                 assert_eq!(
-                    *j,
-                    P::default(),
-                    "impulse {k} past the colliders or refused"
+                    *push,
+                    Push::default(),
+                    "push {k} past the colliders or refused"
                 );
             }
         }
@@ -1154,6 +1161,7 @@ fn made_holds_up<S: Scalar>(m: &Make) {
             velocity: None,
             friction: Some((0.5, 0.3)),
             restitution: None,
+            mass: None,
         }],
         thickness: 0.05,
         touch: 5,
