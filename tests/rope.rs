@@ -466,6 +466,53 @@ fn accuracy_levels_bound_the_energy_swing() {
     }
 }
 
+/// The released rope of [`energy_swing`] over 10 s from three starts that put energy in
+/// every mode (from rest, where the swing feeds the stiff modes over time; alternating
+/// velocities, the stiffest mode; scattered velocities): the largest swing of its total
+/// energy, relative to the energy of its motion (what its fall releases plus its starting
+/// kinetic energy).
+fn worst_energy_swing<I: Integrator + Copy>(integrator: I, accuracy: Accuracy) -> f64 {
+    let mut worst = 0.0f64;
+    for start in 0..3 {
+        let mut rope = common::released_rope(integrator, accuracy);
+        let mut kinetic = 0.0;
+        for i in 1..8 {
+            let speed = match start {
+                0 => 0.0,
+                1 => 30.0 * if i % 2 == 0 { 1.0 } else { -1.0 },
+                _ => 30.0 * ((i * 7919 % 13) as f64 / 6.0 - 1.0),
+            };
+            let v = Vec2::new(0.3 * speed, speed);
+            rope.set_velocity(i, v).unwrap();
+            kinetic += 0.5 * v.dot(v) / rope.inv_masses()[i];
+        }
+        let (e0, scale) = (rope.energy(), common::RELEASED_ROPE_FALL_ENERGY + kinetic);
+        for _ in 0..600 {
+            let _ = rope.step(1.0 / 60.0).unwrap();
+            worst = worst.max((rope.energy() - e0).abs() / scale);
+        }
+    }
+    worst
+}
+
+/// The worst-case figures `Accuracy`'s docs state, over starts that excite every mode.
+#[test]
+fn accuracy_levels_bound_the_energy_swing_from_any_start() {
+    use dunas::integrator::{SymplecticEuler, Verlet};
+    let levels = [
+        (Accuracy::Fast, 0.65, 0.16),
+        (Accuracy::Balanced, 0.15, 0.035),
+        (Accuracy::Fine, 0.04, 0.0025),
+    ];
+    for (accuracy, euler_bound, verlet_bound) in levels {
+        let euler = worst_energy_swing(SymplecticEuler, accuracy);
+        let verlet = worst_energy_swing(Verlet, accuracy);
+        eprintln!("{accuracy:?}, any start: symplectic Euler {euler:.4}, Verlet {verlet:.4}");
+        assert!(euler <= euler_bound, "{accuracy:?}: {euler}");
+        assert!(verlet <= verlet_bound, "{accuracy:?}: {verlet}");
+    }
+}
+
 /// A rope at rest looks at rest: an `f32` rope of 30 particles (1 m, 1 kg, EA 1000 N,
 /// damping 2/s) settled for 10 s then watched for 2 s. What remains is rounding noise in
 /// its stiffest mode: speeds of a few 1e-4 m/s whose amplitude, `v/ω` with `ω` in the
