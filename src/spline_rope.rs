@@ -738,6 +738,22 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             let strain = strain.map(|span| span.map(|s| s.x));
             out.strain = fit(&self.proj, &self.weights, &self.gram, &strain, false);
         }
+        // Rounding makes a rope at its rest length a few units of the last place long or
+        // short, and its tension that many units of `EA`: pulls with no direction to them,
+        // which an unloaded rope (nothing else holds its pose) would follow for ever. Strains
+        // within 16 units of the format's last place count as 0, and larger ones are taken
+        // that much closer to 0 so the tension stays continuous (in `Q16`, 2.4e-4 of the
+        // length; in `f32`, 1.9e-6).
+        let dead = P::Scalar::EPSILON * P::Scalar::from_i16(16);
+        for c in &mut out.strain {
+            *c = if c.abs() <= dead {
+                zero
+            } else if *c > zero {
+                *c - dead
+            } else {
+                *c + dead
+            };
+        }
         if out.strain.iter().any(|&c| c < zero) {
             let points = evaluate(&self.proj, &out.strain);
             if points[..K - 3].iter().flatten().any(|&s| s < zero) {
