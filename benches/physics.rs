@@ -199,7 +199,7 @@ fn surfaces(c: &mut Criterion) {
         });
     }
     bench_on(&mut g, "sail8_draw24_patch", &sail, |s| {
-        s.sample(24, 24, &mut pos, &mut nor).unwrap()
+        s.sample_patch(24, 24, &mut pos, &mut nor).unwrap()
     });
     g.finish();
 }

@@ -18,44 +18,12 @@
 //! ```
 
 use crate::error::invalid;
-use crate::{Error, Point, Scalar};
+pub use crate::view::View;
+use crate::{Error, Point};
 
 /// Cells beyond this distance off the canvas are clamped before a line is walked, so a
 /// wild point costs at most a few thousand steps.
 const REACH: i32 = 4096;
-
-/// Maps world positions to character cells: `top_left` is the world point at the top-left
-/// corner of cell (0, 0); `y` grows upwards in the world and downwards in rows.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct View<P: Point> {
-    top_left: P,
-    inv_width: P::Scalar,
-    inv_height: P::Scalar,
-}
-
-impl<P: Point> View<P> {
-    /// A view with cells `cell_width × cell_height` world units wide and tall.
-    ///
-    /// # Errors
-    /// [`Error::InvalidParameter`] for a non-positive or non-finite cell size.
-    pub fn new(top_left: P, cell_width: P::Scalar, cell_height: P::Scalar) -> Result<Self, Error> {
-        for c in [cell_width, cell_height] {
-            crate::error::check_positive(c, "cell size")?;
-        }
-        Ok(View {
-            top_left,
-            inv_width: P::Scalar::ONE / cell_width,
-            inv_height: P::Scalar::ONE / cell_height,
-        })
-    }
-
-    /// The cell `(column, row)` a world point falls in (may be off the canvas).
-    pub fn cell(&self, p: P) -> (i32, i32) {
-        let col = ((p.coord(0) - self.top_left.coord(0)) * self.inv_width).floor_i32();
-        let row = ((self.top_left.coord(1) - p.coord(1)) * self.inv_height).floor_i32();
-        (col, row)
-    }
-}
 
 /// A `width × height` grid of bytes borrowed from the caller, row after row.
 #[derive(Debug)]

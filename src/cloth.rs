@@ -161,12 +161,14 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
 }
 
 impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Cloth<Vec3<S>, U, V, I> {
-    /// Samples the smoothed surface: an `nu × nv` grid of positions and unit normals (see
-    /// [`Patch::sample_grid_with_normals`]); returns the point count.
+    /// Samples the single Bézier patch through the particles as control points (see
+    /// [`patch`](Self::patch)): an `nu × nv` grid of positions and unit normals (see
+    /// [`Patch::sample_grid_with_normals`]); returns the point count. The surface a game
+    /// draws through its particles is [`draw`](Self::draw)'s.
     ///
     /// # Errors
     /// As [`Patch::sample_grid_with_normals`].
-    pub fn sample(
+    pub fn sample_patch(
         &self,
         nu: usize,
         nv: usize,

@@ -4,7 +4,7 @@
 //! [`Contacts`] names the colliders, the thickness (radius) of the rope or cloth, and where to
 //! test ([`Touch`]). Stepping with it ([`Rope::step_touching`](crate::Rope::step_touching),
 //! [`Cloth::step_touching`](crate::Cloth::step_touching),
-//! [`MassSpring::step_touching`](crate::MassSpring::step_touching)) resolves the contacts after
+//! [`MassSpring::step_touching_particles`](crate::MassSpring::step_touching_particles)) resolves the contacts after
 //! every substep, whatever the integrator: a point closer to a collider than the thickness is
 //! moved out along the collider's normal, and its velocity relative to the collider loses its
 //! inward part (times `1 + restitution`) and, by Coulomb's law, its sliding part: all of it

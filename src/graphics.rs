@@ -4,7 +4,7 @@
 //! pixels through the same [`View`] as the ASCII canvas.
 //!
 //! ```
-//! use dunas::{Bezier, Vec2, ascii::View, graphics::Curve};
+//! use dunas::{Bezier, Vec2, View, graphics::Curve};
 //! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor, prelude::*};
 //! use embedded_graphics::primitives::PrimitiveStyle;
 //!
@@ -36,7 +36,7 @@ use embedded_graphics::primitives::{
 };
 
 use crate::Point;
-use crate::ascii::View;
+use crate::View;
 
 fn pixel<P: Point>(view: &View<P>, p: P) -> Pixel {
     let (x, y) = view.cell(p);

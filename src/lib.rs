@@ -54,7 +54,8 @@
 //!   that draw them, and Wang's formula for how many points to draw.
 //! - [`scalar`], [`point`]: the [`Scalar`] trait over `f32`, `f64` and [`Q16`]; [`Vec2`],
 //!   [`Vec3`] and the [`Point`] trait.
-//! - [`ascii`]: a `no_std` text canvas for quick looks and device demos.
+//! - [`ascii`]: a `no_std` text canvas for quick looks and device demos; [`View`] maps the
+//!   world to its cells, or to a display's pixels (`graphics`).
 //!
 //! # Feature flags
 //!
@@ -124,6 +125,7 @@ mod substeps;
 pub mod surface;
 pub mod system;
 pub mod timestep;
+mod view;
 #[cfg(all(feature = "xml", dunas_std))]
 pub mod xml;
 
@@ -143,6 +145,7 @@ pub use smooth::Smoothing;
 pub use spring::Material;
 pub use system::MassSpring;
 pub use timestep::FixedTimestep;
+pub use view::View;
 
 /// The README's code blocks, run as doc tests.
 #[cfg(doctest)]

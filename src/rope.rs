@@ -32,6 +32,20 @@ use crate::{Error, Point, Scalar, Settings};
 ///
 /// State size in `f32` 2D: `20·N + 16·CAP + 52` bytes; 340 for 8 particles.
 ///
+/// # Where things are
+/// - Stepping, holding and weights are its [`MassSpring`]'s, reached through `Deref`:
+///   [`step`](MassSpring::step), [`step_with`](MassSpring::step_with),
+///   [`set_position`](MassSpring::set_position), [`move_pinned`](MassSpring::move_pinned),
+///   [`set_inv_mass`](MassSpring::set_inv_mass), [`hang`](MassSpring::hang),
+///   [`release`](MassSpring::release).
+/// - Touching: [`step_touching`](Rope::step_touching) tests what [`Touch`](crate::contact::Touch)
+///   names, the drawn curve included.
+/// - Breaking: [`set_snap`](MassSpring::set_snap) and
+///   [`set_spring_snap`](MassSpring::set_spring_snap) (snap limits), [`cut`](Rope::cut) (a
+///   swipe), [`pieces`](Rope::pieces).
+/// - Drawing: [`draw`](Rope::draw) (one curve a piece, whole or cut),
+///   [`sample`](Rope::sample) (one curve through the whole rope; refused once it is cut).
+///
 /// ```
 /// use dunas::prelude::*;
 ///

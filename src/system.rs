@@ -527,9 +527,11 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     /// As [`step_with`](Self::step_with), resolving `contacts` at the particles after every
-    /// substep, with enough substeps that nothing tunnels (see [`contact`](crate::contact)).
-    /// A [`Touch::Drawn`](crate::contact::Touch::Drawn) is tested at the particles here;
-    /// [`Rope::step_touching`](crate::Rope::step_touching) tests the drawn curve.
+    /// substep, whatever their [`Touch`](crate::contact::Touch), with enough substeps that
+    /// nothing tunnels (see [`contact`](crate::contact)). A system that knows what it draws
+    /// has `step_touching`, which tests that: [`Rope::step_touching`](crate::Rope::step_touching)
+    /// the drawn curve, [`Cloth::step_touching`](crate::Cloth::step_touching) the drawn
+    /// surface.
     ///
     /// ```
     /// use dunas::prelude::*;
@@ -542,7 +544,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// let floor = [Collider::half_space(Vec2::new(0.0, -3.0), Vec2::new(0.0, 1.0))?];
     /// let contacts = Contacts::new(&floor, 0.05, Touch::Particles)?;
     /// for _ in 0..120 {
-    ///     rope.step_touching(1.0 / 60.0, (), &contacts)?;
+    ///     let _ = rope.step_touching_particles(1.0 / 60.0, (), &contacts)?;
     /// }
     /// assert!(rope.positions().iter().all(|p| p.y >= -3.0));
     /// # Ok::<(), dunas::Error>(())
@@ -550,7 +552,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// As [`step_with`](Self::step_with).
-    pub fn step_touching<F: ForceField<P>>(
+    pub fn step_touching_particles<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         forces: F,

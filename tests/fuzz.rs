@@ -1006,7 +1006,7 @@ fn apply_cloth<S: Scalar>(cloth: &mut Sail<S>, call: &ClothCall) -> Result<(), E
         ClothCall::Sample { nu, nv, len } => {
             let mut points = vec![Vec3::new(S::ZERO, S::ZERO, S::ZERO); *len];
             let mut normals = points.clone();
-            let n = cloth.sample(*nu, *nv, &mut points, &mut normals)?;
+            let n = cloth.sample_patch(*nu, *nv, &mut points, &mut normals)?;
             drawn(n, *len, &points, &normals);
             Ok(())
         }

@@ -374,7 +374,7 @@ fn cloth_hangs_in_the_wind_and_samples_smoothly() {
     assert_eq!(sail.positions()[0], Vec3::new(0.0, 0.0, 0.0));
     let mut pos = [Vec3::default(); 256];
     let mut nor = [Vec3::default(); 256];
-    assert_eq!(sail.sample(16, 16, &mut pos, &mut nor), Ok(256));
+    assert_eq!(sail.sample_patch(16, 16, &mut pos, &mut nor), Ok(256));
     for n in &nor {
         assert!((n.length() - 1.0).abs() < 1e-4);
     }
