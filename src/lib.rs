@@ -41,6 +41,129 @@
 //! Every call returns a [`Result`]: a NaN hand, a step that would blow up or a buffer too
 //! small is an [`Error`], and a refused call leaves the rope as it was.
 //!
+//! # Recipes
+//!
+//! **A ball the rope hits, both ways, drawn with embedded-graphics.** The ball is a collider
+//! with its own mass; the step reports what the rope did to it ([`contact::Push`]), and the
+//! game moves the ball by that. Both preludes import together.
+//!
+//! ```
+//! use dunas::contact::Push;
+//! use dunas::prelude::*;
+//! # #[cfg(feature = "embedded-graphics")]
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor, prelude::*};
+//! # #[cfg(feature = "embedded-graphics")]
+//! use embedded_graphics::primitives::{Circle, PrimitiveStyle};
+//!
+//! let settings = Settings { gravity: Vec2::new(0.0, -9.81), damping: 0.1, ..Settings::default() };
+//! let material = Material { stiffness: 500.0, damping: 1.0 };
+//! let mut rope: Rope<Vec2<f32>, 8> =
+//!     Rope::new(Vec2::new(-1.5, 0.5), Vec2::new(1.5, 0.5), 0.5, material, settings)?;
+//! rope.set_inv_mass(7, 0.0)?; // both ends held: a rope bridge
+//! let (radius, mass) = (0.3, 1.5); // the ball: three times the rope
+//! let (mut ball, mut velocity) = (Vec2::new(0.2, 2.0), Vec2::new(0.0, 0.0));
+//! let mut pushes = [Push::default(); 1];
+//! let mut points = [Vec2::default(); 36];
+//! for _ in 0..120 {
+//!     ball += velocity / 60.0; // where the ball will be at the end of the frame
+//!     let colliders = [Collider::ball(ball, radius)?.moving(velocity)?.with_mass(mass)?];
+//!     let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))?
+//!         .with_pushes(&mut pushes);
+//!     let info = rope.step_touching(1.0 / 60.0, (), &contacts)?;
+//!     assert!(!info.slow_motion);
+//!     ball += pushes[0].shift;
+//!     velocity += pushes[0].impulse / mass + Vec2::new(0.0, -9.81) / 60.0;
+//!     let n = rope.sample(Smoothing::BSpline, &mut points)?;
+//!     # #[cfg(feature = "embedded-graphics")]
+//!     # {
+//!     let view = View::new(Vec2::new(-2.0, 2.5), 0.0625, 0.0625)?; // 16 pixels a metre
+//!     let mut display = MockDisplay::new();
+//!     display.set_allow_overdraw(true);
+//!     dunas::graphics::Curve::new(&points[..n], view)
+//!         .into_styled(PrimitiveStyle::with_stroke(BinaryColor::On, 2))
+//!         .draw(&mut display)
+//!         .unwrap();
+//!     let (x, y) = view.cell(ball);
+//!     Circle::with_center(Point::new(x, y), 10) // embedded-graphics's Point
+//!         .into_styled(PrimitiveStyle::with_stroke(BinaryColor::On, 1))
+//!         .draw(&mut display)
+//!         .unwrap();
+//!     # }
+//! }
+//! assert!(ball.y > 0.0 && ball.y < 2.5); // caught by the rope, and no higher than it fell
+//! # Ok::<(), dunas::Error>(())
+//! ```
+//!
+//! **A cut rope on a floor, drawn by pieces.** [`Rope::draw`] draws each piece as its own
+//! curve and [`Rope::cut`] cuts where the player swiped across what was drawn; the contacts
+//! touch each piece's curve, so nothing sinks through the floor.
+//!
+//! ```
+//! use dunas::breaking::Piece;
+//! use dunas::prelude::*;
+//!
+//! let settings = Settings { gravity: Vec2::new(0.0, -9.81), damping: 0.2, ..Settings::default() };
+//! let material = Material { stiffness: 500.0, damping: 1.0 };
+//! let mut rope: Rope<Vec2<f32>, 8> =
+//!     Rope::new(Vec2::new(0.0, 0.5), Vec2::new(2.3, 0.5), 0.5, material, settings)?;
+//! let floor = [Collider::half_space(Vec2::new(0.0, -1.0), Vec2::new(0.0, 1.0))?];
+//! let contacts = Contacts::new(&floor, 0.02, Touch::Drawn(Smoothing::BSpline))?;
+//! let (mut points, mut pieces) = ([Vec2::default(); 64], [Piece::EMPTY; 8]);
+//! let mut drawn = rope.draw(Smoothing::BSpline, &mut points, &mut pieces)?;
+//! for frame in 0..240 {
+//!     if frame == 60 {
+//!         // The player's swipe, across the middle of what the last frame drew.
+//!         let middle = points[pieces[0].points.end / 2];
+//!         let (from, to) = (middle + Vec2::new(-1.0, 0.1), middle + Vec2::new(1.0, -0.1));
+//!         assert!(rope.cut(&points, &pieces[..drawn], from, to)?.is_some());
+//!     }
+//!     let _ = rope.step_touching(1.0 / 60.0, (), &contacts)?;
+//!     drawn = rope.draw(Smoothing::BSpline, &mut points, &mut pieces)?; // draw pieces[..drawn]
+//!     for piece in &pieces[..drawn] {
+//!         assert!(points[piece.points.clone()].iter().all(|p| p.y > -1.01));
+//!     }
+//! }
+//! assert_eq!(drawn, 2); // the held piece and the one on the floor
+//! assert!(rope.sample(Smoothing::BSpline, &mut points).is_err()); // one curve would bridge the cut
+//! # Ok::<(), dunas::Error>(())
+//! ```
+//!
+//! **The same rope in Q16.16 on a chip without an FPU.** Constants are `const`, nothing
+//! allocates, and the frame function is what a `#![no_std]` game calls 60 times a second.
+//!
+//! ```
+//! use dunas::prelude::*;
+//!
+//! const DT: Q16 = Q16::ratio(1, 60);
+//! const GRAVITY: Q16 = Q16::ratio(-981, 100);
+//!
+//! fn new_rope(hand: Vec2<Q16>) -> Result<Rope<Vec2<Q16>, 8>, Error> {
+//!     let settings = Settings { gravity: Vec2::new(Q16::ZERO, GRAVITY), damping: Q16::ratio(1, 10), ..Settings::default() };
+//!     let material = Material { stiffness: Q16::from_int(500), damping: Q16::ONE };
+//!     Rope::new(hand, hand + Vec2::new(Q16::ZERO, Q16::ratio(-23, 10)), Q16::ratio(1, 2), material, settings)
+//! }
+//!
+//! /// One frame: the hand moves, the rope steps, the curve is drawn into `points` (the
+//! /// count returned: in Q16 the default sampler halves each span, 4 segments here).
+//! fn frame(rope: &mut Rope<Vec2<Q16>, 8>, hand: Vec2<Q16>, points: &mut [Vec2<Q16>; 36]) -> Result<usize, Error> {
+//!     rope.move_pinned(0, hand, DT)?;
+//!     let info = rope.step(DT)?;
+//!     if info.saturated || info.slow_motion {
+//!         // Past the format's limits: the step says so (and a saturated rope comes back).
+//!     }
+//!     rope.sample(Smoothing::BSpline, points)
+//! }
+//!
+//! let hand = Vec2::new(Q16::ZERO, Q16::ratio(1, 2));
+//! let mut rope = new_rope(hand)?;
+//! let mut points = [Vec2::new(Q16::ZERO, Q16::ZERO); 36];
+//! for _ in 0..60 {
+//!     assert_eq!(frame(&mut rope, hand, &mut points)?, 29); // 7 spans of 4, and the end
+//! }
+//! assert_eq!(points[0], hand);
+//! # Ok::<(), dunas::Error>(())
+//! ```
+//!
 //! # Modules
 //!
 //! - [`prelude`]: everything the example above uses, in one import.

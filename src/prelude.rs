@@ -27,4 +27,5 @@ pub use crate::point::Point as _;
 pub use crate::point::{Vec2, Vec3};
 pub use crate::{
     Accuracy, Bezier, Cloth, Error, FixedTimestep, Material, Rope, Scalar, Settings, Smoothing,
+    View,
 };
