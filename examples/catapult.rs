@@ -40,6 +40,11 @@ fn status(game: &Catapult) -> String {
             landing_x(from, launch, -9.81)
         ),
     };
+    // The rope's links are solved together each frame: it holds its length under the penguin.
+    let line = format!(
+        "{line}   (largest stretch {:.1}%)",
+        game.largest_stretch * 100.0
+    );
     match game.slow_frames {
         0 => line,
         n => {

@@ -13,7 +13,9 @@ use dunas::Settings;
 use dunas::integrator::{AnyIntegrator, ImplicitEuler, Integrator, Xpbd};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::{Error, MassSpring, Point, Vec2};
+use dunas::{Error, MassSpring, Point, Rope, Smoothing, Vec2};
+#[cfg(feature = "fixed")]
+use dunas::{Q16, Scalar};
 
 type Chain<const N: usize, const CAP: usize> =
     MassSpring<Vec2<f64>, Line<N>, Springs<f64, CAP>, AnyIntegrator>;
@@ -613,4 +615,218 @@ fn xpbd_stretch_converges_to_the_springs_as_substeps_grow() {
         assert!(excess < previous_excess / 8.0, "{substeps}: {excess}");
         previous_excess = excess;
     }
+}
+
+/// The catapult's rope (1.6 m, 0.4 kg, 8 particles, 4 000 N/m a spring) with `bob` kg on its
+/// end, whirled by a hand at 0.75 turns a second after a second of spin-up, for 5 s: the
+/// largest stretch of a link and of the drawn (Catmull-Rom) curve, and whether every frame
+/// took one substep and simulated its whole `dt`.
+fn whirled_rope<I: Integrator>(integrator: I, bob: f32) -> (f32, f32, bool) {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 0.05,
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: 4000.0,
+        damping: 4.0,
+    };
+    let (start, end) = (Vec2::new(0.5f32, 0.0), Vec2::new(0.5, -1.6));
+    let mut rope: Rope<Vec2<f32>, 8, 8, I> =
+        Rope::new(start, end, 0.4, material, settings).unwrap();
+    rope.hang(7, bob).unwrap();
+    let hand = |t: f32| {
+        let turns = (t.min(1.0) * t.min(1.0) * 0.5 + (t - 1.0).max(0.0)) * 0.75;
+        let a = core::f32::consts::TAU * turns;
+        Vec2::new(0.5 * a.cos(), 0.5 * a.sin())
+    };
+    let (mut link, mut drawn, mut one_substep) = (0.0f32, 0.0f32, true);
+    for frame in 1..=300 {
+        rope.move_pinned(0, hand(frame as f32 / 60.0), 1.0 / 60.0)
+            .unwrap();
+        let info = rope.step(1.0 / 60.0).unwrap();
+        one_substep &= info.substeps == 1 && !info.slow_motion;
+        for pair in rope.positions().windows(2) {
+            link = link.max(pair[0].distance(pair[1]) / (1.6 / 7.0) - 1.0);
+        }
+        let length = rope.drawn_length(Smoothing::CatmullRom, 1e-4).unwrap();
+        drawn = drawn.max(length / 1.6 - 1.0);
+    }
+    (link, drawn, one_substep)
+}
+
+/// `DirectChain` holds the catapult's rope at its length under its penguin (7.5 times the
+/// rope's mass) in one substep a frame, where symplectic Euler on the same springs stretches
+/// it by half; and a bob 100 times the rope's mass too. The bounds are the type's docs'.
+#[test]
+fn direct_chain_holds_a_whirled_rope_under_a_heavy_bob() {
+    use dunas::integrator::{DirectChain, SymplecticEuler};
+    let (link, drawn, one) = whirled_rope(DirectChain::default(), 3.0);
+    let (soft, _, _) = whirled_rope(SymplecticEuler, 3.0);
+    eprintln!(
+        "penguin: links {:.3}%, drawn {:.3}% (symplectic Euler's links {:.1}%)",
+        link * 100.0,
+        drawn * 100.0,
+        soft * 100.0
+    );
+    assert!(one, "one substep a frame, no slow motion");
+    assert!(link <= 1e-4 && drawn <= 5e-3, "{link} {drawn}");
+    let (link, drawn, one) = whirled_rope(DirectChain::default(), 40.0);
+    eprintln!(
+        "bob 100×: links {:.3}%, drawn {:.3}%",
+        link * 100.0,
+        drawn * 100.0
+    );
+    assert!(one && link <= 5e-3 && drawn <= 5e-3, "{link} {drawn}");
+}
+
+/// A rope of 8 particles (1 m, 1 kg) with `bob` kg on its end, released level and undamped:
+/// the share of the energy its fall released that is left after 10 s, and the largest
+/// stretch of a link over the swing.
+fn released_chain<I: Integrator>(integrator: I, bob: f64) -> (f64, f64) {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let material = Material {
+        stiffness: 1e5,
+        damping: 0.0,
+    };
+    let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0));
+    let mut rope: Rope<Vec2<f64>, 8, 8, I> =
+        Rope::new(start, end, 1.0, material, settings).unwrap();
+    if bob > 0.0 {
+        rope.hang(7, bob).unwrap();
+    }
+    // Hanging straight down at rest: the potential the swing ends at.
+    let rest: f64 = (1..8)
+        .map(|i| -9.81 * (i as f64 / 7.0) / rope.inv_masses()[i])
+        .sum();
+    let released = rope.energy() - rest;
+    let mut stretch = 0.0f64;
+    for _ in 0..600 {
+        let _ = rope.step(1.0 / 60.0).unwrap();
+        for pair in rope.positions().windows(2) {
+            stretch = stretch.max(pair[0].distance(pair[1]) * 7.0 - 1.0);
+        }
+    }
+    ((rope.energy() - rest) / released, stretch)
+}
+
+/// `DirectChain` damps a swing (what its docs state, held as lower bounds) while keeping its
+/// links within 0.5% with a bob of 100 times the rope's mass swinging.
+#[test]
+fn direct_chain_keeps_part_of_a_swing() {
+    use dunas::integrator::DirectChain;
+    for (bob, least) in [(0.0, 0.15), (1.0, 0.35), (10.0, 0.4)] {
+        let (kept, stretch) = released_chain(DirectChain::default(), bob);
+        eprintln!(
+            "bob {bob} kg: {:.0}% of the energy kept after 10 s, links within {:.3}%",
+            kept * 100.0,
+            stretch * 100.0
+        );
+        assert!(kept >= least && kept <= 1.0 + 1e-9, "bob {bob}: {kept}");
+        assert!(stretch <= 5e-3, "bob {bob}: {stretch}");
+    }
+    let (_, stretch) = released_chain(DirectChain::default(), 100.0);
+    assert!(stretch <= 5e-3, "100×: {stretch}");
+}
+
+/// With its springs' stiffness (`inextensible: false`), a rope hanging at rest stretches as
+/// the closed form says, each link by the weight below it over `k`, and every stiffness from
+/// 10² to 10⁸ N/m takes one substep a frame.
+#[test]
+fn direct_chain_springs_sag_as_statics_says_at_any_stiffness() {
+    use dunas::integrator::DirectChain;
+    let solver = DirectChain {
+        inextensible: false,
+        ..DirectChain::default()
+    };
+    for k in [1e2, 1e4, 1e6, 1e8] {
+        let settings = Settings {
+            gravity: Vec2::new(0.0, -9.81),
+            damping: 2.0,
+            ..Settings::default()
+        }
+        .with_integrator(solver);
+        let material = Material {
+            stiffness: k,
+            damping: 0.0,
+        };
+        let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(0.0, -1.4));
+        let mut rope: Rope<Vec2<f64>, 8, 8, DirectChain> =
+            Rope::new(start, end, 1.4, material, settings).unwrap();
+        for _ in 0..1200 {
+            let info = rope.step(1.0 / 60.0).unwrap();
+            assert!(info.substeps == 1 && !info.slow_motion, "k {k}: {info:?}");
+        }
+        let (x, w) = (rope.positions(), rope.inv_masses());
+        for i in 0..7 {
+            let below: f64 = ((i + 1)..8).map(|p| 9.81 / w[p]).sum();
+            let expected = 0.2 + below / k;
+            let got = x[i].distance(x[i + 1]);
+            assert!(
+                (got - expected).abs() <= 1e-3 * (expected - 0.2) + 1e-9,
+                "k {k}, link {i}: {got} against {expected}"
+            );
+        }
+    }
+}
+
+/// `DirectChain` in `Q16`: the catapult's rope with its penguin hanging and swinging stays
+/// within 1% of its length, and a cut rope's pieces move apart (a cut link is left out).
+#[cfg(feature = "fixed")]
+#[test]
+fn direct_chain_in_q16_and_cut() {
+    use dunas::integrator::DirectChain;
+    let q = Q16::from_f64;
+    let settings = Settings {
+        gravity: Vec2::new(q(0.0), q(-9.81)),
+        ..Settings::default()
+    }
+    .with_integrator(DirectChain::default());
+    let material = Material {
+        stiffness: q(4000.0),
+        damping: q(4.0),
+    };
+    let (start, end) = (Vec2::new(q(0.0), q(0.0)), Vec2::new(q(1.6), q(0.0)));
+    let mut rope: Rope<Vec2<Q16>, 8, 8, DirectChain> =
+        Rope::new(start, end, q(0.4), material, settings).unwrap();
+    rope.hang(7, q(3.0)).unwrap();
+    let mut stretch = 0.0f64;
+    for _ in 0..300 {
+        let _ = rope.step(Q16::ratio(1, 60)).unwrap();
+        for pair in rope.positions().windows(2) {
+            let l = (pair[1] - pair[0]).length().to_f64();
+            stretch = stretch.max(l * 7.0 / 1.6 - 1.0);
+        }
+    }
+    eprintln!("Q16: links within {:.3}%", stretch * 100.0);
+    assert!(stretch <= 0.01, "{stretch}");
+    let mut points = [Vec2::new(q(0.0), q(0.0)); 64];
+    let mut pieces = [dunas::breaking::Piece::EMPTY; 8];
+    let drawn = rope
+        .draw(Smoothing::BSpline, &mut points, &mut pieces)
+        .unwrap();
+    let middle = points[pieces[0].points.end / 2];
+    let swipe = (
+        middle + Vec2::new(q(-1.0), q(0.1)),
+        middle + Vec2::new(q(1.0), q(-0.1)),
+    );
+    assert!(
+        rope.cut(&points, &pieces[..drawn], swipe.0, swipe.1)
+            .unwrap()
+            .is_some()
+    );
+    let before = rope.positions()[7];
+    for _ in 0..60 {
+        let _ = rope.step(Q16::ratio(1, 60)).unwrap();
+    }
+    assert_eq!(rope.pieces().count(), 2);
+    assert!(
+        rope.positions()[7].y < before.y - q(1.0),
+        "the cut piece falls"
+    );
 }

@@ -5,6 +5,7 @@
 
 use dunas::ascii::{Canvas, View};
 use dunas::body::Body;
+use dunas::integrator::DirectChain;
 use dunas::prelude::*;
 
 /// The frame step.
@@ -13,10 +14,13 @@ pub const STEP: f32 = 1.0 / 60.0;
 pub const GROUND: f32 = -3.0;
 /// The penguin's mass (kg); the rope weighs 0.4 kg.
 pub const PENGUIN: f32 = 3.0;
-/// The hand whirls on a circle of this radius (m) round the origin...
-const HAND_RADIUS: f32 = 0.5;
+/// The rope's length (m).
+const ROPE_LENGTH: f32 = 1.6;
+/// The hand whirls on a circle of this radius (m) round the origin (an inextensible rope
+/// stores nothing to fling the penguin with, so the hand does the work)...
+const HAND_RADIUS: f32 = 0.8;
 /// ...at this many turns a second (counter-clockwise), after a second of spin-up.
-const TURNS: f32 = 0.75;
+const TURNS: f32 = 1.0;
 /// The player clicks once the penguin has whirled this long and heads up and forward.
 const CLICK_AFTER: f32 = 3.0;
 
@@ -34,7 +38,9 @@ pub enum Penguin {
 }
 
 pub struct Catapult {
-    pub rope: Rope<Vec2<f32>, 8>,
+    /// The rope's links solved together each frame ([`DirectChain`]): it does not stretch
+    /// under the penguin.
+    pub rope: Rope<Vec2<f32>, 8, 8, DirectChain>,
     pub penguin: Penguin,
     /// Where and how fast the penguin left the rope.
     pub released: Option<(Vec2<f32>, Vec2<f32>)>,
@@ -42,6 +48,9 @@ pub struct Catapult {
     time: f32,
     /// Frames whose step hit the substep cap and simulated less than the frame.
     pub slow_frames: u32,
+    /// The largest stretch of the rope (its particles' chain) while the penguin hangs on it
+    /// (0.01 is 1%).
+    pub largest_stretch: f32,
 }
 
 impl Catapult {
@@ -50,14 +59,19 @@ impl Catapult {
             gravity: Vec2::new(0.0, -9.81),
             damping: 0.05,
             ..Settings::default()
-        };
+        }
+        .with_integrator(DirectChain {
+            iterations: 6,
+            inextensible: true,
+            substeps: 6,
+        });
         let material = Material {
             stiffness: 4000.0,
             damping: 4.0,
         };
         let mut rope = Rope::new(
             Vec2::new(HAND_RADIUS, 0.0),
-            Vec2::new(HAND_RADIUS, -1.6),
+            Vec2::new(HAND_RADIUS, -ROPE_LENGTH),
             0.4,
             material,
             settings,
@@ -71,6 +85,7 @@ impl Catapult {
             trail: Vec::new(),
             time: 0.0,
             slow_frames: 0,
+            largest_stretch: 0.0,
         }
     }
 
@@ -94,6 +109,15 @@ impl Catapult {
             .expect("the hand stays in range");
         let info = self.rope.step(STEP).expect("the rope stays stable");
         self.slow_frames += u32::from(info.slow_motion);
+        if self.penguin == Penguin::Swinging {
+            let length: f32 = self
+                .rope
+                .positions()
+                .windows(2)
+                .map(|pair| pair[0].distance(pair[1]))
+                .sum();
+            self.largest_stretch = self.largest_stretch.max(length / ROPE_LENGTH - 1.0);
+        }
         match self.penguin {
             Penguin::Swinging => {
                 let v = self.rope.velocities()[7];

@@ -2,7 +2,7 @@
 //!
 //! A system names its integrator by type (`MassSpring<P, Shape, Topology, Verlet>`), so a
 //! device image links that one method and nothing else. [`AnyIntegrator`] is the run-time
-//! choice, for tools that compare methods or load them from a file; it links all six.
+//! choice, for tools that compare methods or load them from a file; it links all seven.
 //!
 //! `ω` is the highest angular frequency of the spring network and `h` the substep.
 //! [`MassSpring::step`](crate::MassSpring::step) bounds `ω` from the springs and masses
@@ -18,10 +18,12 @@
 //! | [`Rk4`] | 2√2 ≈ 2.83 | 4 | slowly loses | fourth order, the accurate choice |
 //! | [`ImplicitEuler`] | unconditionally stable | 1 + `iterations` Jacobian products | loses (damps high frequencies) | matrix-free conjugate gradient, no heap |
 //! | [`Xpbd`] | unconditionally stable | 1 per XPBD substep + one projection per spring | loses a little | springs as compliant distance constraints (Macklin et al. 2016, 2019) |
+//! | [`DirectChain`] | unconditionally stable, one substep a frame | 1 + `iterations` direct solves along the chain | loses where links stretch | a rope's links solved together, exactly: inextensible, or its springs at any stiffness |
 //!
 //! Per spring, a force evaluation costs one square root, one division and about 20
 //! multiply-adds; per particle, about 6 operations.
 
+mod chain;
 mod euler;
 mod implicit;
 mod model;
@@ -31,6 +33,7 @@ mod xpbd;
 
 use core::fmt::Debug;
 
+pub use chain::DirectChain;
 pub use euler::{ExplicitEuler, SymplecticEuler};
 pub use implicit::ImplicitEuler;
 pub(crate) use implicit::solve_scale;
@@ -49,7 +52,7 @@ mod sealed {
     pub trait Sealed {}
 }
 
-/// A way to advance a mass-spring system by one substep. Implemented by the six method
+/// A way to advance a mass-spring system by one substep. Implemented by the seven method
 /// types of this module and by [`AnyIntegrator`]; sealed, so that every method's stability
 /// limit is known to the substep planner.
 ///
@@ -82,7 +85,7 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
     ) -> bool;
 }
 
-/// Any of the six methods, chosen at run time: for comparing them, or reading one from a
+/// Any of the seven methods, chosen at run time: for comparing them, or reading one from a
 /// file. Links every method's code; a game that knows its method names the type instead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum AnyIntegrator {
@@ -99,6 +102,8 @@ pub enum AnyIntegrator {
     ImplicitEuler(ImplicitEuler),
     /// [`Xpbd`].
     Xpbd(Xpbd),
+    /// [`DirectChain`].
+    DirectChain(DirectChain),
 }
 
 impl sealed::Sealed for AnyIntegrator {}
@@ -125,6 +130,7 @@ macro_rules! with_method {
             }
             AnyIntegrator::ImplicitEuler($m) => $body,
             AnyIntegrator::Xpbd($m) => $body,
+            AnyIntegrator::DirectChain($m) => $body,
         }
     };
 }
