@@ -39,6 +39,8 @@ pub struct Report {
     pub pin_instructions: Option<u32>,
     /// The costliest frame but one the example singles out (the cut's), where it does.
     pub other_frame_instructions: Option<u32>,
+    /// The rope's largest stretch over the run, in thousandths, where the example measures it.
+    pub stretch_permille: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -201,6 +203,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         cut_frame: None,
         pin_instructions: None,
         other_frame_instructions: None,
+        stretch_permille: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -456,6 +459,9 @@ mod board {
                 if let Some(n) = r.pin_instructions {
                     put_number(b"pin_instructions", n, false);
                 }
+                if let Some(n) = r.stretch_permille {
+                    put_number(b"stretch_permille", n, false);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -528,6 +534,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.cut_frame {
                 println!("cut_frame={n}");
+            }
+            if let Some(n) = r.stretch_permille {
+                println!("stretch_permille={n}");
             }
         }
         Err(e) => {
