@@ -5,6 +5,7 @@
 //! run under a minute that writes into `target/evaluate-quick/`. `--only ropes` runs the sections
 //! whose name starts with `ropes` (to iterate on one; the summary then holds only those).
 
+mod chains;
 #[path = "../../tests/common/mod.rs"]
 mod common;
 mod contacts;
@@ -91,7 +92,7 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 9] = [
+    let sections: [(&str, Section); 10] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
@@ -101,6 +102,7 @@ fn main() {
         ("contacts", contacts::run),
         ("modes", modes::run),
         ("stiff ropes", stiff::run),
+        ("chains", chains::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

@@ -133,6 +133,8 @@ impl DirectChain {
             ratio: Sh::filled(zero),
             solved: Sh::filled(zero),
             before: Sh::filled(P::default()),
+            length: Sh::filled(zero),
+            measured: None,
         };
         let inv_h2 = P::Scalar::ONE / (h * h);
         model.topology.for_each_spring(|i, j, length, m| {
@@ -147,7 +149,9 @@ impl DirectChain {
         });
         for _ in 0..self.iterations.max(1) {
             links.solve(Sh::flat_mut(&mut state.pos), w);
-            project_others(model, Sh::flat_mut(&mut state.pos), inv_h2);
+            if project_others(model, Sh::flat_mut(&mut state.pos), inv_h2) {
+                links.measured = None;
+            }
         }
         let inv_h = P::Scalar::ONE / h;
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
@@ -174,17 +178,28 @@ struct Links<P: Point, Sh: Shape> {
     solved: Sh::PerParticle<P::Scalar>,
     /// The positions before a Newton step, for its line search.
     before: Sh::PerParticle<P>,
+    /// Each link's length at the positions now, and their squared stretch, once measured
+    /// (the line search measures them; the next iteration starts from them).
+    length: Sh::PerParticle<P::Scalar>,
+    measured: Option<P::Scalar>,
 }
 
 /// Most times a Newton step is halved before it is taken as it is.
 const MAX_HALVINGS: u8 = 4;
 
-/// `Σ (l − rest)²` over the links: what a Newton step must lower.
-fn stretch<P: Point>(x: &[P], rest: &[P::Scalar], linked: &[bool]) -> P::Scalar {
+/// Each link's length into `length`, and `Σ (l − rest)²` over the links: what a Newton step
+/// must lower.
+fn measure<P: Point>(
+    x: &[P],
+    rest: &[P::Scalar],
+    linked: &[bool],
+    length: &mut [P::Scalar],
+) -> P::Scalar {
     let mut sum = P::Scalar::ZERO;
     for i in 0..x.len().saturating_sub(1) {
         if linked[i] {
-            let c = x[i + 1].distance(x[i]) - rest[i];
+            length[i] = x[i + 1].distance(x[i]);
+            let c = length[i] - rest[i];
             sum += c * c;
         }
     }
@@ -205,16 +220,20 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             Sh::flat_mut(&mut self.solved),
         );
         let links = x.len().saturating_sub(1);
-        // The taut links: direction and right-hand side `−C − α̃λ`; a zero direction marks
-        // a slack one.
-        let residual = stretch(x, rest, linked);
+        let length = Sh::flat_mut(&mut self.length);
+        let residual = match self.measured {
+            Some(residual) => residual,
+            None => measure(x, rest, linked, length),
+        };
+        // Each link's direction and right-hand side `−C − α̃λ`; a zero direction marks one
+        // too short to have a direction.
         for i in 0..links {
             (dir[i], solved[i]) = (P::default(), zero);
             if !linked[i] {
                 continue;
             }
             let d = x[i + 1] - x[i];
-            let l = d.length();
+            let l = length[i];
             let b = -(l - rest[i]) - compliance[i] * lambda[i];
             if l > tiny_length::<P::Scalar>() {
                 (dir[i], solved[i]) = (d * (P::Scalar::ONE / l), b);
@@ -265,7 +284,9 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                     x[i + 1] += moved * w[i + 1];
                 }
             }
-            if halving == MAX_HALVINGS || stretch(x, rest, linked) <= residual {
+            let after = measure(x, rest, linked, length);
+            self.measured = Some(after);
+            if halving == MAX_HALVINGS || after <= residual {
                 break;
             }
             x.copy_from_slice(before);
@@ -280,13 +301,14 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
 }
 
 /// Every spring that is not a link, projected once as [`Xpbd`](super::Xpbd) does, with
-/// compliance `1 / (k h²)` (`inv_h2` is `1 / h²`).
+/// compliance `1 / (k h²)` (`inv_h2` is `1 / h²`); `true` when there was one.
 fn project_others<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     model: &Model<'_, P, Sh, T>,
     x: &mut [P],
     inv_h2: P::Scalar,
-) {
+) -> bool {
     let w = model.inv_mass();
+    let mut moved = false;
     model.topology.for_each_spring(|a, b, rest, m| {
         let wsum = w[a] + w[b];
         if a.abs_diff(b) == 1 || wsum <= P::Scalar::ZERO || m.stiffness <= P::Scalar::ZERO {
@@ -301,5 +323,7 @@ fn project_others<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         let dl = -(l - rest) / (wsum + inv_h2 / m.stiffness);
         x[a] -= nrm * (dl * w[a]);
         x[b] += nrm * (dl * w[b]);
+        moved = true;
     });
+    moved
 }
