@@ -332,6 +332,7 @@ macro_rules! scalar_times {
     )+};
 }
 
+#[cfg(dunas_floats)]
 scalar_times!(f32, f64);
 
 /// Conversions to and from `mint`, which glam, nalgebra and cgmath convert to and from:
