@@ -805,6 +805,35 @@ fn direct_chain_in_q16_and_cut() {
     }
     eprintln!("Q16: links within {:.3}%", stretch * 100.0);
     assert!(stretch <= 0.01, "{stretch}");
+    // With its springs: hanging at rest, the top link stretched by the weight below over k
+    // (3.6 N over 4 000 N/m: 60 units of Q16's last place), within 10 units.
+    let springs = DirectChain {
+        inextensible: false,
+        ..DirectChain::default()
+    };
+    let settings = Settings {
+        gravity: Vec2::new(q(0.0), q(-9.81)),
+        damping: q(2.0),
+        ..Settings::default()
+    }
+    .with_integrator(springs);
+    let (top, bottom) = (Vec2::new(q(0.0), q(0.0)), Vec2::new(q(0.0), q(-1.6)));
+    let mut hanging: Rope<Vec2<Q16>, 8, 8, DirectChain> =
+        Rope::new(top, bottom, q(0.4), material, settings).unwrap();
+    for _ in 0..600 {
+        let _ = hanging.step(Q16::ratio(1, 60)).unwrap();
+    }
+    let below: f64 = (1..8)
+        .map(|p| 9.81 / hanging.inv_masses()[p].to_f64())
+        .sum();
+    let x = hanging.positions();
+    let got = (x[1] - x[0]).length().to_f64() - 1.6 / 7.0;
+    let expected = below / 4000.0;
+    let ulp = 1.0 / 65536.0;
+    assert!(
+        (got - expected).abs() <= 10.0 * ulp,
+        "{got} against {expected}"
+    );
     let mut points = [Vec2::new(q(0.0), q(0.0)); 64];
     let mut pieces = [dunas::breaking::Piece::EMPTY; 8];
     let drawn = rope

@@ -140,24 +140,26 @@ impl DirectChain {
             length: Sh::filled(zero),
             measured: None,
         };
-        let inv_h2 = P::Scalar::ONE / (h * h);
+        let inv_h = P::Scalar::ONE / h;
+        // `1 / (k h²)` as `(1/h) / (k h)`: in `Q16`, `h²` of a short solve is below the
+        // format's resolution, and a stiffness past its range leaves 0 (held, inextensible).
+        let compliance = |k: P::Scalar| inv_h / (k * h);
         model.topology.for_each_spring(|i, j, length, m| {
             if i.abs_diff(j) == 1 {
                 let i = i.min(j);
                 Sh::flat_mut(&mut links.rest)[i] = length;
                 Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
                 if !self.inextensible && m.stiffness > zero {
-                    Sh::flat_mut(&mut links.compliance)[i] = inv_h2 / m.stiffness;
+                    Sh::flat_mut(&mut links.compliance)[i] = compliance(m.stiffness);
                 }
             }
         });
         for _ in 0..self.iterations.max(1) {
             links.solve(Sh::flat_mut(&mut state.pos), w);
-            if project_others(model, Sh::flat_mut(&mut state.pos), inv_h2) {
+            if project_others(model, Sh::flat_mut(&mut state.pos), compliance) {
                 links.measured = None;
             }
         }
-        let inv_h = P::Scalar::ONE / h;
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
         for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
             if w > zero {
@@ -305,11 +307,11 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
 }
 
 /// Every spring that is not a link, projected once as [`Xpbd`](super::Xpbd) does, with
-/// compliance `1 / (k h²)` (`inv_h2` is `1 / h²`); `true` when there was one.
+/// compliance `compliance(k)`, `1 / (k h²)`; `true` when there was one.
 fn project_others<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     model: &Model<'_, P, Sh, T>,
     x: &mut [P],
-    inv_h2: P::Scalar,
+    compliance: impl Fn(P::Scalar) -> P::Scalar,
 ) -> bool {
     let w = model.inv_mass();
     let mut moved = false;
@@ -324,7 +326,7 @@ fn project_others<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
             return;
         }
         let nrm = d * (P::Scalar::ONE / l);
-        let dl = -(l - rest) / (wsum + inv_h2 / m.stiffness);
+        let dl = -(l - rest) / (wsum + compliance(m.stiffness));
         x[a] -= nrm * (dl * w[a]);
         x[b] += nrm * (dl * w[b]);
         moved = true;
