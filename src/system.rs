@@ -675,16 +675,16 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 damping: self.settings.damping,
                 time: self.time,
             };
-            unsaturated &= self
-                .settings
-                .integrator
-                .substep(&model, &mut self.state, h, forces);
-            self.time += h;
-            resolve(
+            let lag = h * P::Scalar::from_i16((n - k) as i16);
+            let inv_mass = &self.inv_mass;
+            unsaturated &= self.settings.integrator.substep_touching(
+                &model,
                 &mut self.state,
-                &self.inv_mass,
-                (h, h * P::Scalar::from_i16((n - k) as i16)),
+                (h, lag),
+                forces,
+                &mut |state, times| resolve(state, inv_mass, times),
             );
+            self.time += h;
         }
         if !unsaturated {
             self.calm();

@@ -83,6 +83,23 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         h: P::Scalar,
         forces: &mut F,
     ) -> bool;
+
+    /// [`substep`](Self::substep), then `touch(state, (h, lag))` (the contacts of a step
+    /// that resolves them, `lag` seconds before the frame ends). A method that splits its
+    /// substep into shorter solves resolves the contacts after each of them, with their own
+    /// length and lag.
+    fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        (h, lag): (P::Scalar, P::Scalar),
+        forces: &mut F,
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> bool {
+        let fits = self.substep(model, state, h, forces);
+        touch(state, (h, lag));
+        fits
+    }
 }
 
 /// Any of the seven methods, chosen at run time: for comparing them, or reading one from a
@@ -152,5 +169,16 @@ impl Integrator for AnyIntegrator {
         forces: &mut F,
     ) -> bool {
         with_method!(*self, m => m.substep(model, state, h, forces))
+    }
+
+    fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        times: (P::Scalar, P::Scalar),
+        forces: &mut F,
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> bool {
+        with_method!(*self, m => m.substep_touching(model, state, times, forces, touch))
     }
 }
