@@ -47,7 +47,8 @@ use crate::{Point, Scalar};
 /// particles (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
-    /// Newton iterations a solve (4 by default); 0 counts as 1.
+    /// Newton iterations a solve at most (4 by default); an inextensible rope stops once
+    /// its links are within 10⁻⁶ of its length. 0 counts as 1.
     pub iterations: u8,
     /// `true`: every link at its rest length (an inextensible rope). `false`: the links'
     /// springs with their stiffness.
@@ -171,10 +172,18 @@ impl DirectChain {
                 }
             }
         });
+        // Held links have converged once their squared stretch is within that of 10⁻⁶ of the
+        // rope's length (springs stretch by design: they take every iteration).
+        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
+        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         for _ in 0..self.iterations.max(1) {
             links.solve(Sh::flat_mut(&mut state.pos), w);
             if project_others(model, Sh::flat_mut(&mut state.pos), compliance) {
                 links.measured = None;
+            } else if self.inextensible
+                && links.measured.is_some_and(|r| r <= tolerance * tolerance)
+            {
+                break;
             }
         }
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
