@@ -27,12 +27,12 @@ use crate::{Point, Scalar};
 /// the spacing is; one of a third holds the rope, `direct_chain_rests_on_a_peg`); for thin
 /// pegs, use [`SymplecticEuler`](super::SymplecticEuler).
 ///
-/// Measured (`tests/physics.rs`, `direct_chain_*`), with the defaults (4 solves of 4
+/// Measured (`tests/physics.rs`, `direct_chain_*`), with the defaults (4 solves of up to 4
 /// iterations a 60 Hz frame), one substep a frame at any stiffness:
 /// - the catapult's rope (1.6 m, 0.4 kg, 8 particles) whirled with its 3 kg penguin: links
 ///   within 0.01% of their length, the drawn curve within 0.5% (0.21% measured;
 ///   symplectic Euler on the same springs stretches 55%);
-/// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.13%);
+/// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.25%);
 /// - 1 000 times: not held (the links stretch several times over); use a shorter step;
 /// - an undamped released rope keeps 18% of its swing's energy over 10 s without a bob and
 ///   40% to 48% with one of 1 to 10 times its mass, against 96% to 97% for symplectic
@@ -41,10 +41,10 @@ use crate::{Point, Scalar};
 ///   More solves keep more (16 solves of 2 iterations: 39% to 72%).
 ///
 /// Cost: per iteration, a square root, a division and about 30 multiply-adds a link; the
-/// same at every stiffness (within 1.00× from 10² to 10⁸ N/m, `docs/chains/summary.md`),
-/// 4.8 times symplectic Euler's frame on the catapult rope's own soft springs. On a
-/// Cortex-M0 in Q16.16, 2 iterations of one solve take 43 780 instructions a step for 8
-/// particles (`examples/mcu_catapult.rs`).
+/// same at every stiffness (within 1.04× from 10² to 10⁸ N/m, `docs/chains/summary.md`),
+/// 1.5 times symplectic Euler's frame on the catapult rope's own soft springs. On a
+/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 42 730 instructions a
+/// step for 8 particles (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); an inextensible rope stops once
