@@ -9,13 +9,13 @@ use std::time::Duration;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use dunas::Settings;
-use dunas::integrator::{AnyIntegrator, ImplicitEuler, Xpbd};
+use dunas::integrator::{AnyIntegrator, DirectChain, DirectSprings, ImplicitEuler, Xpbd};
 use dunas::sampler::{BernsteinTable, Sampler};
 use dunas::smooth::Smoothing;
 use dunas::spring::Material;
 use dunas::{Bezier, Cloth, Rope, Vec2, Vec3};
 
-const INTEGRATORS: [(&str, AnyIntegrator); 6] = [
+const INTEGRATORS: [(&str, AnyIntegrator); 8] = [
     ("explicit_euler", AnyIntegrator::ExplicitEuler),
     ("symplectic_euler", AnyIntegrator::SymplecticEuler),
     ("verlet", AnyIntegrator::Verlet),
@@ -25,6 +25,21 @@ const INTEGRATORS: [(&str, AnyIntegrator); 6] = [
         AnyIntegrator::ImplicitEuler(ImplicitEuler { iterations: 8 }),
     ),
     ("xpbd_4", AnyIntegrator::Xpbd(Xpbd { substeps: 4 })),
+    (
+        "direct_chain",
+        AnyIntegrator::DirectChain(DirectChain {
+            iterations: 4,
+            inextensible: true,
+            substeps: 4,
+        }),
+    ),
+    (
+        "direct_springs",
+        AnyIntegrator::DirectSprings(DirectSprings {
+            iterations: 1,
+            substeps: 1,
+        }),
+    ),
 ];
 
 /// A swinging rope of `N` particles, 70 px long, the same material and mass at any `N`
@@ -54,6 +69,8 @@ fn rope<const N: usize, const CAP: usize>(
     for _ in 0..20 {
         let _ = r.step(1.0 / 60.0).unwrap();
     }
+    // One step of the benchmarks' length: `DirectSprings` keeps its factor for it.
+    let _ = r.step_once(1.0 / 240.0, ()).unwrap();
     r
 }
 
@@ -83,6 +100,7 @@ fn cloth<const U: usize, const V: usize>(
     for _ in 0..20 {
         let _ = c.step(1.0 / 60.0).unwrap();
     }
+    let _ = c.step_once(1.0 / 240.0, ()).unwrap();
     c
 }
 

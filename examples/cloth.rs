@@ -23,6 +23,7 @@ use std::time::Instant;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::force::{SailWind, Wind};
+use dunas::integrator::{DirectSprings, Integrator, SymplecticEuler};
 use dunas::spring::Material;
 use dunas::surface::SurfaceTable;
 use dunas::{Cloth, Vec3, lod};
@@ -98,15 +99,18 @@ fn parse_args() -> Result<Args, String> {
 /// (column 0), its head on the gaff (row 0), its foot on the boom (the last row), its leech
 /// free. Spring stiffness does not change with the grid (a membrane), so sails of any size are
 /// the same cloth. The wind blows along +z with a gust every 3 s, from `phase` seconds.
-fn sail<const U: usize, const V: usize>(
+/// Stepped by `integrator`.
+fn sail<I: Integrator, const U: usize, const V: usize>(
+    integrator: I,
     wind_speed: f32,
     phase: f32,
-) -> (Cloth<Vec3<f32>, U, V>, SailWind<f32>) {
+) -> (Cloth<Vec3<f32>, U, V, I>, SailWind<f32>) {
     let settings = Settings {
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 0.3,
         ..Settings::default()
-    };
+    }
+    .with_integrator(integrator);
     let materials = [(900.0, 0.6), (300.0, 0.2), (60.0, 0.05)]
         .map(|(stiffness, damping)| Material { stiffness, damping });
     let mut cloth = Cloth::rectangle(
@@ -264,7 +268,7 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
 /// A boat of the fleet: its sail and wind, where it sails (x across, z away from the
 /// camera, metres) and its heading's yaw.
 struct Boat {
-    sail: Cloth<Vec3<f32>, 8, 8>,
+    sail: Cloth<Vec3<f32>, 8, 8, DirectSprings>,
     wind: SailWind<f32>,
     at: [f32; 2],
     yaw: f32,
@@ -276,7 +280,11 @@ fn fleet(boats: usize) -> Vec<Boat> {
     (0..boats)
         .map(|k| {
             let (col, row) = (k % per_row, k / per_row);
-            let (sail, wind) = sail::<8, 8>(4.0 + (k % 5) as f32 * 0.5, k as f32 * 0.37);
+            let (sail, wind) = sail::<_, 8, 8>(
+                DirectSprings::default(),
+                4.0 + (k % 5) as f32 * 0.5,
+                k as f32 * 0.37,
+            );
             let across = (col as f32 - (per_row - 1) as f32 / 2.0) * 9.0 + (row % 2) as f32 * 4.5;
             Boat {
                 sail,
@@ -335,8 +343,8 @@ fn main() {
         std::process::exit(1);
     }
     let (w, h) = (args.width, args.height);
-    let (mut small, mut small_wind) = sail::<8, 8>(5.0, 0.5);
-    let (mut big, mut big_wind) = sail::<20, 20>(5.0, 0.5);
+    let (mut small, mut small_wind) = sail::<_, 8, 8>(DirectSprings::default(), 5.0, 0.5);
+    let (mut big, mut big_wind) = sail::<_, 20, 20>(SymplecticEuler, 5.0, 0.5);
     let (a, b, r) = STAY;
     let stay = [
         Collider::capsule(Vec3::new(a[0], a[1], a[2]), Vec3::new(b[0], b[1], b[2]), r)

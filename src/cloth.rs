@@ -37,7 +37,7 @@ use crate::{Error, Patch, Point, Scalar, Settings, Vec3};
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Cloth<P: Point, const U: usize, const V: usize, I = SymplecticEuler> {
+pub struct Cloth<P: Point, const U: usize, const V: usize, I: Integrator = SymplecticEuler> {
     system: MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>, I>,
 }
 
@@ -199,14 +199,14 @@ impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Cloth<Vec3<S>, U,
     }
 }
 
-impl<P: Point, const U: usize, const V: usize, I> Deref for Cloth<P, U, V, I> {
+impl<P: Point, const U: usize, const V: usize, I: Integrator> Deref for Cloth<P, U, V, I> {
     type Target = MassSpring<P, Grid<U, V>, GridSprings<P::Scalar, U, V>, I>;
     fn deref(&self) -> &Self::Target {
         &self.system
     }
 }
 
-impl<P: Point, const U: usize, const V: usize, I> DerefMut for Cloth<P, U, V, I> {
+impl<P: Point, const U: usize, const V: usize, I: Integrator> DerefMut for Cloth<P, U, V, I> {
     fn deref_mut(&mut self) -> &mut Self::Target {
         &mut self.system
     }

@@ -169,7 +169,7 @@
 //! - [`prelude`]: everything the example above uses, in one import.
 //! - [`system`]: the [`MassSpring`] system that [`Rope`] and [`Cloth`] are made of;
 //!   [`Settings`] and [`Accuracy`] configure it.
-//! - [`integrator`]: seven time integrators, one type each, behind the [`Integrator`] trait.
+//! - [`integrator`]: eight time integrators, one type each, behind the [`Integrator`] trait.
 //! - [`spring`]: [`Material`]s and the topologies that lay springs out.
 //! - [`force`]: wind, anchor springs and the [`ForceField`](force::ForceField) trait.
 //! - [`smooth`]: a row of particles as one Bézier, a B-spline or a Catmull-Rom spline.

@@ -376,6 +376,11 @@ impl Scalar for Q16 {
     const EPSILON: Self = Q16::from_bits(1);
     const FIXED_POINT: bool = true;
 
+    #[inline]
+    fn bits(self) -> u64 {
+        u64::from(self.to_bits() as u32)
+    }
+
     fn from_f64(x: f64) -> Self {
         if x.is_nan() {
             return Self::ZERO;

@@ -62,7 +62,7 @@ use crate::{Error, Point, Scalar, Settings};
 /// # Ok::<(), dunas::Error>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Rope<P: Point, const N: usize, const CAP: usize = N, I = SymplecticEuler> {
+pub struct Rope<P: Point, const N: usize, const CAP: usize = N, I: Integrator = SymplecticEuler> {
     system: MassSpring<P, Line<N>, Springs<P::Scalar, CAP>, I>,
 }
 
@@ -362,14 +362,14 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     }
 }
 
-impl<P: Point, const N: usize, const CAP: usize, I> Deref for Rope<P, N, CAP, I> {
+impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Deref for Rope<P, N, CAP, I> {
     type Target = MassSpring<P, Line<N>, Springs<P::Scalar, CAP>, I>;
     fn deref(&self) -> &Self::Target {
         &self.system
     }
 }
 
-impl<P: Point, const N: usize, const CAP: usize, I> DerefMut for Rope<P, N, CAP, I> {
+impl<P: Point, const N: usize, const CAP: usize, I: Integrator> DerefMut for Rope<P, N, CAP, I> {
     fn deref_mut(&mut self) -> &mut Self::Target {
         &mut self.system
     }

@@ -48,6 +48,13 @@ pub trait Scalar:
     fn from_f64(x: f64) -> Self;
     /// Converts to `f64` (exact for all three formats).
     fn to_f64(self) -> f64;
+    /// The value's bits, as a key: equal exactly when the two values are the same number in
+    /// the same encoding (a float's `0` and `−0` differ). The default goes through
+    /// [`to_f64`](Self::to_f64); the crate's formats read their bits directly.
+    #[inline]
+    fn bits(self) -> u64 {
+        self.to_f64().to_bits()
+    }
     /// `num / den` rounded to nearest; `den == 0` gives 0.
     fn ratio(num: u32, den: u32) -> Self;
     /// Square root; negative inputs give 0. Exact to the format's rounding.
@@ -134,6 +141,10 @@ macro_rules! impl_float {
             #[inline]
             fn to_f64(self) -> f64 {
                 self as f64
+            }
+            #[inline]
+            fn bits(self) -> u64 {
+                u64::from(self.to_bits())
             }
             #[inline]
             fn ratio(num: u32, den: u32) -> Self {

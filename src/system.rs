@@ -49,7 +49,7 @@ pub struct StepInfo<S> {
 /// A particle with inverse mass 0 is pinned: the integrators never move it, and the game moves
 /// it with [`set_position`](Self::set_position) (a rope held by a hand).
 #[derive(Clone)]
-pub struct MassSpring<P: Point, Sh: Shape, T, I = SymplecticEuler> {
+pub struct MassSpring<P: Point, Sh: Shape, T, I: Integrator = SymplecticEuler> {
     state: State<P, Sh>,
     inv_mass: Sh::PerParticle<P::Scalar>,
     topology: T,
@@ -61,9 +61,11 @@ pub struct MassSpring<P: Point, Sh: Shape, T, I = SymplecticEuler> {
     /// Substeps per unit of `rate · dt`, from the integrator and the accuracy.
     per_rate: P::Scalar,
     settings: Settings<P, I>,
+    /// What the integrator keeps between steps (`DirectSprings`: its factor).
+    memory: I::Memory<P::Scalar, Sh>,
 }
 
-impl<P: Point, Sh: Shape, T: core::fmt::Debug, I: core::fmt::Debug> core::fmt::Debug
+impl<P: Point, Sh: Shape, T: core::fmt::Debug, I: Integrator> core::fmt::Debug
     for MassSpring<P, Sh, T, I>
 {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -148,6 +150,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             spring_rate: P::Scalar::ZERO,
             per_rate: substeps_per_rate(&settings.integrator, settings.accuracy),
             settings,
+            memory: I::memory(),
         };
         system.update_spring_rate();
         Ok(system)
@@ -352,7 +355,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`] for a missing particle on either side. Nothing changes then.
-    pub fn weld<Sh2: Shape, T2, I2>(
+    pub fn weld<Sh2: Shape, T2, I2: Integrator>(
         &mut self,
         i: usize,
         other: &mut MassSpring<P, Sh2, T2, I2>,
@@ -680,6 +683,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             unsaturated &= self.settings.integrator.substep_touching(
                 &model,
                 &mut self.state,
+                &mut self.memory,
                 (h, lag),
                 forces,
                 &mut |state, times| resolve(state, inv_mass, times),

@@ -71,6 +71,10 @@ impl Default for DirectChain {
 impl sealed::Sealed for DirectChain {}
 
 impl Integrator for DirectChain {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         None
     }
@@ -86,7 +90,14 @@ impl Integrator for DirectChain {
         h: P::Scalar,
         forces: &mut F,
     ) -> bool {
-        self.substep_touching(model, state, (h, P::Scalar::ZERO), forces, &mut |_, _| {})
+        self.substep_touching(
+            model,
+            state,
+            &mut (),
+            (h, P::Scalar::ZERO),
+            forces,
+            &mut |_, _| {},
+        )
     }
 
     /// Each solve ends with the contacts, so that a link's solve never pulls the rope
@@ -95,29 +106,15 @@ impl Integrator for DirectChain {
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
+        _: &mut (),
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> bool {
-        let n = self.substeps.max(1);
-        let hs = h / P::Scalar::from_i16(i16::from(n));
-        let end = state.pos;
-        let mut ok = true;
-        for left in (0..n).rev() {
-            // A held particle is at its hand's place at the end of the step, moving at the
-            // hand's velocity: at the end of this solve it is `left` solves short of there.
-            let behind = hs * P::Scalar::from_i16(i16::from(left));
-            let w = model.inv_mass();
-            let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
-            for (((x, &end), &v), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(v).zip(w) {
-                if w <= P::Scalar::ZERO {
-                    *x = end - v * behind;
-                }
-            }
-            ok &= self.solve_step(model, state, hs, forces);
-            touch(state, (hs, lag + behind));
-        }
-        ok
+        let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
+            self.solve_step(model, state, hs, forces)
+        };
+        super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
     }
 }
 
@@ -178,7 +175,7 @@ impl DirectChain {
         let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         for _ in 0..self.iterations.max(1) {
             links.solve(Sh::flat_mut(&mut state.pos), w);
-            if project_others(model, Sh::flat_mut(&mut state.pos), compliance) {
+            if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
             } else if self.inextensible
                 && links.measured.is_some_and(|r| r <= tolerance * tolerance)
@@ -330,32 +327,4 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             }
         }
     }
-}
-
-/// Every spring that is not a link, projected once as [`Xpbd`](super::Xpbd) does, with
-/// compliance `compliance(k)`, `1 / (k h²)`; `true` when there was one.
-fn project_others<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
-    model: &Model<'_, P, Sh, T>,
-    x: &mut [P],
-    compliance: impl Fn(P::Scalar) -> P::Scalar,
-) -> bool {
-    let w = model.inv_mass();
-    let mut moved = false;
-    model.topology.for_each_spring(|a, b, rest, m| {
-        let wsum = w[a] + w[b];
-        if a.abs_diff(b) == 1 || wsum <= P::Scalar::ZERO || m.stiffness <= P::Scalar::ZERO {
-            return;
-        }
-        let d = x[b] - x[a];
-        let l = d.length();
-        if l <= tiny_length::<P::Scalar>() {
-            return;
-        }
-        let nrm = d * (P::Scalar::ONE / l);
-        let dl = -(l - rest) / (wsum + compliance(m.stiffness));
-        x[a] -= nrm * (dl * w[a]);
-        x[b] += nrm * (dl * w[b]);
-        moved = true;
-    });
-    moved
 }

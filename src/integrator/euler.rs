@@ -52,6 +52,10 @@ fn euler<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
 impl sealed::Sealed for ExplicitEuler {}
 
 impl Integrator for ExplicitEuler {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         Some(S::ratio(1, 9))
     }
@@ -73,6 +77,10 @@ impl Integrator for ExplicitEuler {
 impl sealed::Sealed for SymplecticEuler {}
 
 impl Integrator for SymplecticEuler {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         Some(S::from_i16(2))
     }

@@ -111,6 +111,10 @@ fn spring_jacobian_product<S: Scalar, P: Point<Scalar = S>>(
 impl sealed::Sealed for ImplicitEuler {}
 
 impl Integrator for ImplicitEuler {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         None
     }

@@ -2,7 +2,7 @@
 //!
 //! A system names its integrator by type (`MassSpring<P, Shape, Topology, Verlet>`), so a
 //! device image links that one method and nothing else. [`AnyIntegrator`] is the run-time
-//! choice, for tools that compare methods or load them from a file; it links all seven.
+//! choice, for tools that compare methods or load them from a file; it links all eight.
 //!
 //! `ω` is the highest angular frequency of the spring network and `h` the substep.
 //! [`MassSpring::step`](crate::MassSpring::step) bounds `ω` from the springs and masses
@@ -19,11 +19,13 @@
 //! | [`ImplicitEuler`] | unconditionally stable | 1 + `iterations` Jacobian products | loses (damps high frequencies) | matrix-free conjugate gradient, no heap |
 //! | [`Xpbd`] | unconditionally stable | 1 per XPBD substep + one projection per spring | loses a little | springs as compliant distance constraints (Macklin et al. 2016, 2019) |
 //! | [`DirectChain`] | unconditionally stable, one substep a frame | 1 + `iterations` direct solves along the chain | loses where links stretch | a rope's links solved together, exactly: inextensible, or its springs at any stiffness |
+//! | [`DirectSprings`] | unconditionally stable, one substep a frame | 1 + `iterations` banded back-substitutions, one factorisation | loses (damps as backward Euler) | every spring of a rope or cloth solved together (projective dynamics): a sail at one solve a frame |
 //!
 //! Per spring, a force evaluation costs one square root, one division and about 20
 //! multiply-adds; per particle, about 6 operations.
 
 mod chain;
+mod direct;
 mod euler;
 mod implicit;
 mod model;
@@ -34,6 +36,7 @@ mod xpbd;
 use core::fmt::Debug;
 
 pub use chain::DirectChain;
+pub use direct::{DirectSprings, Factored};
 pub use euler::{ExplicitEuler, SymplecticEuler};
 pub use implicit::ImplicitEuler;
 pub(crate) use implicit::solve_scale;
@@ -52,7 +55,7 @@ mod sealed {
     pub trait Sealed {}
 }
 
-/// A way to advance a mass-spring system by one substep. Implemented by the seven method
+/// A way to advance a mass-spring system by one substep. Implemented by the eight method
 /// types of this module and by [`AnyIntegrator`]; sealed, so that every method's stability
 /// limit is known to the substep planner.
 ///
@@ -66,6 +69,13 @@ mod sealed {
 /// # Ok::<(), dunas::Error>(())
 /// ```
 pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
+    /// What the method keeps inside its system from one step to the next: `()` for every
+    /// method but [`DirectSprings`] (and [`AnyIntegrator`]), which keeps its factor.
+    type Memory<S: Scalar, Sh: Shape>: Copy;
+
+    /// The memory of a system that has not stepped yet.
+    fn memory<S: Scalar, Sh: Shape>() -> Self::Memory<S, Sh>;
+
     /// The largest stable `ω·h` for an undamped spring; `None` when the method is stable at
     /// any step. Explicit Euler, unstable at every step, reports `1/9` so that the substep
     /// planner keeps it at `ω·h ≤ 0.1` (it then gains at most 0.5% energy per substep).
@@ -84,25 +94,65 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         forces: &mut F,
     ) -> bool;
 
-    /// [`substep`](Self::substep), then `touch(state, (h, lag))` (the contacts of a step
-    /// that resolves them, `lag` seconds before the frame ends). A method that splits its
-    /// substep into shorter solves resolves the contacts after each of them, with their own
-    /// length and lag.
+    /// [`substep`](Self::substep) with the system's `memory`, then `touch(state, (h, lag))`
+    /// (the contacts of a step that resolves them, `lag` seconds before the frame ends). A
+    /// method that splits its substep into shorter solves resolves the contacts after each
+    /// of them, with their own length and lag.
+    #[allow(clippy::too_many_arguments)]
     fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
+        memory: &mut Self::Memory<P::Scalar, Sh>,
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> bool {
+        let _ = memory;
         let fits = self.substep(model, state, h, forces);
         touch(state, (h, lag));
         fits
     }
 }
 
-/// Any of the seven methods, chosen at run time: for comparing them, or reading one from a
+/// A fresh memory of `method`'s kind (`()` for all but [`DirectSprings`]).
+fn memory_of<I: Integrator, S: Scalar, Sh: Shape>(_: &I) -> I::Memory<S, Sh> {
+    I::memory()
+}
+
+/// Splits a step of `h` seconds into `substeps` equal solves (0 counts as 1), each
+/// `solve(state, hs, forces)` followed by the contacts, `touch(state, (hs, lag))`. A held
+/// particle is at its hand's place at the end of the step, moving at the hand's velocity:
+/// before each solve it is put `left` solves short of there, so it moves through the solves.
+fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+    substeps: u8,
+    model: &Model<'_, P, Sh, T>,
+    state: &mut State<P, Sh>,
+    (h, lag): (P::Scalar, P::Scalar),
+    forces: &mut F,
+    touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> bool,
+) -> bool {
+    let n = substeps.max(1);
+    let hs = h / P::Scalar::from_i16(i16::from(n));
+    let end = state.pos;
+    let mut ok = true;
+    for left in (0..n).rev() {
+        let behind = hs * P::Scalar::from_i16(i16::from(left));
+        let w = model.inv_mass();
+        let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+        for (((x, &end), &v), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(v).zip(w) {
+            if w <= P::Scalar::ZERO {
+                *x = end - v * behind;
+            }
+        }
+        ok &= solve(state, hs, forces);
+        touch(state, (hs, lag + behind));
+    }
+    ok
+}
+
+/// Any of the eight methods, chosen at run time: for comparing them, or reading one from a
 /// file. Links every method's code; a game that knows its method names the type instead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum AnyIntegrator {
@@ -121,6 +171,8 @@ pub enum AnyIntegrator {
     Xpbd(Xpbd),
     /// [`DirectChain`].
     DirectChain(DirectChain),
+    /// [`DirectSprings`].
+    DirectSprings(DirectSprings),
 }
 
 impl sealed::Sealed for AnyIntegrator {}
@@ -148,11 +200,19 @@ macro_rules! with_method {
             AnyIntegrator::ImplicitEuler($m) => $body,
             AnyIntegrator::Xpbd($m) => $body,
             AnyIntegrator::DirectChain($m) => $body,
+            AnyIntegrator::DirectSprings($m) => $body,
         }
     };
 }
 
 impl Integrator for AnyIntegrator {
+    /// [`DirectSprings`]'s, whichever method runs.
+    type Memory<S: Scalar, Sh: Shape> = <DirectSprings as Integrator>::Memory<S, Sh>;
+
+    fn memory<S: Scalar, Sh: Shape>() -> Self::Memory<S, Sh> {
+        DirectSprings::memory()
+    }
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         with_method!(*self, m => m.stability_limit())
     }
@@ -175,10 +235,17 @@ impl Integrator for AnyIntegrator {
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
+        memory: &mut Self::Memory<P::Scalar, Sh>,
         times: (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> bool {
-        with_method!(*self, m => m.substep_touching(model, state, times, forces, touch))
+        if let AnyIntegrator::DirectSprings(m) = *self {
+            return m.substep_touching(model, state, memory, times, forces, touch);
+        }
+        with_method!(*self, m => {
+            let own = &mut memory_of::<_, P::Scalar, Sh>(&m);
+            m.substep_touching(model, state, own, times, forces, touch)
+        })
     }
 }

@@ -14,6 +14,10 @@ pub struct Rk4;
 impl sealed::Sealed for Rk4 {}
 
 impl Integrator for Rk4 {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         // 2·sqrt(2), the extent of RK4's stability region along the imaginary axis.
         Some(S::ratio(2_828_427, 1_000_000))

@@ -14,6 +14,10 @@ pub struct Verlet;
 impl sealed::Sealed for Verlet {}
 
 impl Integrator for Verlet {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         Some(S::from_i16(2))
     }

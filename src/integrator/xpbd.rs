@@ -35,6 +35,10 @@ impl Default for Xpbd {
 impl sealed::Sealed for Xpbd {}
 
 impl Integrator for Xpbd {
+    type Memory<S: Scalar, Sh: Shape> = ();
+
+    fn memory<S: Scalar, Sh: Shape>() {}
+
     fn stability_limit<S: Scalar>(&self) -> Option<S> {
         None
     }
@@ -91,4 +95,34 @@ impl Integrator for Xpbd {
         }
         ok
     }
+}
+
+/// Every spring wider than `band` (its ends more than `band` apart in flat order: what a
+/// direct solve leaves out) projected once, as [`Xpbd`] does with no damping, with compliance
+/// `compliance(k)` (`1 / (k h²)`); `true` when there was one.
+pub(super) fn project<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+    model: &Model<'_, P, Sh, T>,
+    x: &mut [P],
+    compliance: impl Fn(P::Scalar) -> P::Scalar,
+    band: usize,
+) -> bool {
+    let w = model.inv_mass();
+    let mut moved = false;
+    model.topology.for_each_spring(|a, b, rest, m| {
+        let wsum = w[a] + w[b];
+        if a.abs_diff(b) <= band || wsum <= P::Scalar::ZERO || m.stiffness <= P::Scalar::ZERO {
+            return;
+        }
+        let d = x[b] - x[a];
+        let l = d.length();
+        if l <= tiny_length::<P::Scalar>() {
+            return;
+        }
+        let nrm = d * (P::Scalar::ONE / l);
+        let dl = -(l - rest) / (wsum + compliance(m.stiffness));
+        x[a] -= nrm * (dl * w[a]);
+        x[b] += nrm * (dl * w[b]);
+        moved = true;
+    });
+    moved
 }
