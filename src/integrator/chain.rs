@@ -41,8 +41,8 @@ use crate::{Point, Scalar};
 ///   More solves keep more (16 solves of 2 iterations: 39% to 72%).
 ///
 /// Cost: per iteration, a square root, a division and about 30 multiply-adds a link; the
-/// same at every stiffness (within 1.04× from 10² to 10⁸ N/m, `docs/chains/summary.md`),
-/// 1.5 times symplectic Euler's frame on the catapult rope's own soft springs. On a
+/// same at every stiffness (within 1.04× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)),
+/// 1.4 times symplectic Euler's frame on the catapult rope's own soft springs. On a
 /// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 42 730 instructions a
 /// step for 8 particles (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
