@@ -7,6 +7,7 @@ use core::fmt;
 /// Its `Display` text names the value, the limit it broke and, where there is one, what to
 /// do about it.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum Error {
     /// An input coordinate or parameter is NaN, infinite, or a saturated `Q16`.

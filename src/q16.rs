@@ -369,6 +369,14 @@ fn inv_sqrt_bits(x: u32) -> u32 {
     }
 }
 
+/// Logged as its value (`defmt`'s `f32` formatting: 24 bits, exact for every `Q16` below 256).
+#[cfg(feature = "defmt")]
+impl defmt::Format for Q16 {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(f, "{=f32}", self.0.to_num::<f32>());
+    }
+}
+
 impl Scalar for Q16 {
     const ZERO: Self = Q16::from_bits(0);
     const ONE: Self = Q16::from_bits(1 << 16);

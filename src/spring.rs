@@ -607,7 +607,7 @@ impl<S: Scalar, const U: usize, const V: usize> GridSprings<S, U, V> {
         Self::each(|f, i, j, a, b| {
             if marks[j][i] & (1 << f) == 0
                 && let (Some(&pa), Some(&pb)) = (x.get(a), x.get(b))
-                && crate::breaking::crossing(flat(pa), flat(pb), c, d).is_some()
+                && crate::segment::crossing(flat(pa), flat(pb), c, d).is_some()
             {
                 marks[j][i] |= 1 << f;
                 torn += 1;

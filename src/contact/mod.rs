@@ -53,11 +53,14 @@
 use crate::error::invalid;
 use core::cell::Cell;
 
-use crate::collider::Collider;
+pub mod collider;
+mod step;
+
 use crate::error::check_non_negative;
 use crate::smooth::{Smoothed, Smoothing};
 use crate::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
+use collider::Collider;
 
 /// Where contacts are tested.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
