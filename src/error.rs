@@ -67,7 +67,7 @@ pub enum Error {
     /// The simulation blew up during a step (a position or velocity became non-finite or left
     /// the scene bounds). The state before the step was kept.
     Diverged,
-    /// The springs are so stiff that even [`MAX_SUBSTEPS`](crate::system::MAX_SUBSTEPS)
+    /// The springs are so stiff that even [`MAX_SUBSTEPS`](crate::physics::system::MAX_SUBSTEPS)
     /// substeps would advance no time in this format (the scene would freeze). Nothing
     /// changed.
     TooStiff,

@@ -212,64 +212,62 @@ compile_error!(
      or `fixed` for Q16.16 (e.g. `--no-default-features --features libm`)"
 );
 
-#[cfg(dunas_floats)]
-mod math;
+// The layers, from the bottom up; each uses only the ones before it (ARCHITECTURE.md).
 
-mod aabb;
-pub mod ascii;
-pub mod body;
-pub mod breaking;
-mod catenary;
-mod cloth;
+/// 1. Number formats.
+mod number;
+
+/// 2. Points, boxes, segments, the catenary.
+mod geometry;
+
+/// 3. Curves and surfaces, their samplers and level of detail.
+mod curves;
+
+/// 4. Particle systems, springs, forces and integrators.
+mod physics;
+
+// 5. Colliders and contacts (public: `dunas::contact`).
 pub mod contact;
-pub use contact::collider;
-pub mod curve;
-mod error;
-pub mod flatten;
-pub mod force;
-#[cfg(feature = "embedded-graphics")]
-pub mod graphics;
-pub mod integrator;
-pub mod lod;
-pub mod patch;
-pub mod point;
-pub mod prelude;
-#[cfg(feature = "fixed")]
-mod q16;
-mod rope;
-pub mod sampler;
-pub mod scalar;
-mod segment;
-mod settings;
-pub mod shape;
-pub mod smooth;
-pub mod spline_rope;
-pub mod spring;
-mod substeps;
-pub mod surface;
-pub mod system;
-pub mod timestep;
-mod view;
-#[cfg(all(feature = "xml", dunas_std))]
-pub mod xml;
 
-pub use aabb::Aabb;
-pub use cloth::Cloth;
-pub use curve::{Bezier, Cubic, Quadratic};
+/// 6. The game objects: ropes, cloth, spline ropes, breaking.
+mod objects;
+
+/// 7. Drawing and loading.
+mod io;
+
+mod error;
+pub mod prelude;
+
+// The module paths a game uses: each layer's public modules at the crate root.
+pub use contact::collider;
+pub use curves::{curve, flatten, lod, patch, sampler, smooth, surface};
+pub use geometry::point;
+pub use io::ascii;
+#[cfg(feature = "embedded-graphics")]
+pub use io::graphics;
+#[cfg(all(feature = "xml", dunas_std))]
+pub use io::xml;
+pub use number::scalar;
+pub use objects::{breaking, spline_rope};
+pub use physics::{body, force, integrator, shape, spring, system, timestep};
+
+pub use curves::curve::{Bezier, Cubic, Quadratic};
+pub use curves::patch::{Bicubic, Patch};
+pub use curves::smooth::Smoothing;
 pub use error::Error;
-pub use integrator::Integrator;
-pub use patch::{Bicubic, Patch};
-pub use point::{Point, Vec2, Vec3};
+pub use geometry::aabb::Aabb;
+pub use geometry::point::{Point, Vec2, Vec3};
+pub use io::view::View;
 #[cfg(feature = "fixed")]
-pub use q16::Q16;
-pub use rope::Rope;
-pub use scalar::Scalar;
-pub use settings::{Accuracy, Settings};
-pub use smooth::Smoothing;
-pub use spring::Material;
-pub use system::MassSpring;
-pub use timestep::FixedTimestep;
-pub use view::View;
+pub use number::q16::Q16;
+pub use number::scalar::Scalar;
+pub use objects::cloth::Cloth;
+pub use objects::rope::Rope;
+pub use physics::integrator::Integrator;
+pub use physics::settings::{Accuracy, Settings};
+pub use physics::spring::Material;
+pub use physics::system::MassSpring;
+pub use physics::timestep::FixedTimestep;
 
 /// The README's code blocks, run as doc tests.
 #[cfg(doctest)]

@@ -22,9 +22,9 @@
 pub use crate::Q16;
 pub use crate::collider::Collider;
 pub use crate::contact::{Contacts, Touch};
-pub use crate::integrator::Integrator;
-pub use crate::point::Point as _;
-pub use crate::point::{Vec2, Vec3};
+pub use crate::geometry::point::Point as _;
+pub use crate::geometry::point::{Vec2, Vec3};
+pub use crate::physics::integrator::Integrator;
 pub use crate::{
     Accuracy, Bezier, Cloth, Error, FixedTimestep, Material, Rope, Scalar, Settings, Smoothing,
     View,

@@ -24,7 +24,7 @@
 //!   particles' box grown by the basis's overshoot (Catmull-Rom: 25/16), then the deepest
 //!   point of the cell by 3×3 samples and 8 halving rounds of a compass search (its last
 //!   step 1/512 of the cell). The correction `d` found at a point with particle weights `w`
-//!   (see [`Smoothed::weights`](crate::smooth::Smoothed::weights); a product of the two
+//!   (see [`Smoothed::weights`](crate::curves::smooth::Smoothed::weights); a product of the two
 //!   directions' weights on a surface) moves particle `i` by
 //!   `(w_i / m_i) · d / Σ_j w_j² / m_j`: the smallest mass-weighted change that moves the
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
@@ -48,7 +48,7 @@
 //! and a point faster than `r · MAX_SUBSTEPS / dt` may cross a collider thinner than its
 //! step. A thickness of 0 gives no such guarantee.
 //!
-//! [`MAX_SUBSTEPS`]: crate::system::MAX_SUBSTEPS
+//! [`MAX_SUBSTEPS`]: crate::physics::system::MAX_SUBSTEPS
 
 use crate::error::invalid;
 use core::cell::Cell;
@@ -56,9 +56,9 @@ use core::cell::Cell;
 pub mod collider;
 mod step;
 
+use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
-use crate::smooth::{Smoothed, Smoothing};
-use crate::system::StepInfo;
+use crate::physics::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
 use collider::Collider;
 
@@ -434,7 +434,7 @@ impl<'a, P: Point> Contacts<'a, P> {
         // control net (it passes through the particles but bulges past them).
         let net = |pos: &[[P; U]; V]| {
             let mut net = *pos;
-            crate::surface::natural_grid(&mut net);
+            crate::curves::surface::natural_grid(&mut net);
             net
         };
         let mut controls = (self.touch == Touch::Drawn(Smoothing::NaturalSpline)).then(|| net(pos));
@@ -784,8 +784,8 @@ fn deepest_in_cell<P: Point>(
         let (u, v, _) = best;
         for (du, dv) in [(step, zero), (-step, zero), (zero, step), (zero, -step)] {
             let (nu, nv) = (
-                crate::curve::clamp_unit(u + du),
-                crate::curve::clamp_unit(v + dv),
+                crate::curves::curve::clamp_unit(u + du),
+                crate::curves::curve::clamp_unit(v + dv),
             );
             let d = key(nu, nv).1;
             if d < best.2 {

@@ -2,11 +2,11 @@
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
 use super::Contacts;
-use crate::force::ForceField;
-use crate::integrator::{Integrator, State};
-use crate::shape::Shape;
-use crate::spring::Topology;
-use crate::system::StepInfo;
+use crate::physics::force::ForceField;
+use crate::physics::integrator::{Integrator, State};
+use crate::physics::shape::Shape;
+use crate::physics::spring::Topology;
+use crate::physics::system::StepInfo;
 use crate::{Error, MassSpring, Point};
 
 impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, Sh, T, I> {

@@ -1,0 +1,893 @@
+//! Smoothing a row of particles into a curve: the step between the physics and the screen.
+//!
+//! A rope simulated with `K` particles is drawn as a smooth curve with as many points as
+//! the screen needs. Four ways, chosen with [`Smoothing`]:
+//!
+//! - [`Smoothing::Bezier`]: one Bézier curve with the particles as control points (the
+//!   thesis's way). Smoothest (C∞), passes through the two ends only, and each particle
+//!   pulls the whole curve. De Casteljau costs `K²/2` lerps a point, so keep `K` small (≤ 16).
+//! - [`Smoothing::BSpline`]: the uniform cubic B-spline of the particles, written as `K - 1`
+//!   cubic Bézier pieces with C² joins. Passes through the ends, follows the particles
+//!   closely without touching the inner ones; 6 lerps a point whatever `K`.
+//! - [`Smoothing::CatmullRom`]: the Catmull-Rom spline, `K - 1` cubic pieces with C¹ joins
+//!   that pass through every particle. 6 lerps a point.
+//! - [`Smoothing::NaturalSpline`]: the C² cubic spline through every particle (natural
+//!   ends): a B-spline whose control points solve one tridiagonal system, `O(K)` when the
+//!   curve is built, then 6 lerps a point.
+//! - [`Smoothing::Polyline`]: straight segments between the particles, the unsmoothed
+//!   reference. 1 lerp a point.
+//!
+//! [`Smoothed`] holds the pieces a smoothing makes of a row ([`Smoothed::open`]) or a ring
+//! ([`Smoothed::closed`]) of particles: one Bézier curve, cubic spans or straight segments.
+//! It samples them with any [`Sampler`] through one engine, [`Sampler::sample_joined`]: every
+//! span gets the same number of points and a particle's joint falls on a sample. The format's
+//! default sampler ([`DefaultSampler`]) walks dyadic parameters in `Q16` (shifts and additions
+//! only); a [`BernsteinTable`](crate::curves::sampler::BernsteinTable) of the span size makes the float
+//! path a few multiply-adds a point. A rope draws itself with [`Rope::sample`](crate::Rope::sample).
+//!
+//! ```
+//! use dunas::{Vec2, smooth::{Smoothed, Smoothing}};
+//! let rope = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, -1.0), Vec2::new(2.0, -1.0), Vec2::new(3.0, 0.0)];
+//! let mut out = [Vec2::default(); 31];
+//! let n = Smoothed::open(Smoothing::CatmullRom, &rope)?.sample(&mut out)?;
+//! assert_eq!(n, 31); // 3 spans of 10 segments
+//! assert_eq!(out[10], rope[1]); // Catmull-Rom passes through every particle
+//! # Ok::<(), dunas::Error>(())
+//! ```
+
+use crate::curves::sampler::{DefaultSampler, Sampler};
+use crate::error::check_points;
+use crate::error::invalid;
+use crate::{Aabb, Bezier, Error, Point, Scalar};
+use core::ops::{Add, Mul, Sub};
+
+/// How a row of particles becomes a curve. See the [module docs](self).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Smoothing {
+    /// One Bézier curve of degree `K - 1` over all the particles.
+    #[default]
+    Bezier,
+    /// Uniform cubic B-spline, C² (ends clamped by reflected phantom points).
+    BSpline,
+    /// Catmull-Rom spline through every particle, C¹. Its spans overshoot the particles by up
+    /// to a sixth of the distance between a particle's neighbours, so with particles at the
+    /// edge of [`Scalar::SAFE_RANGE`] the drawn points reach at most 4/3 of it (finite in
+    /// every format). The other smoothings stay inside the particles' convex hull.
+    CatmullRom,
+    /// Straight lines between the particles.
+    Polyline,
+    /// The natural cubic spline through every particle, C²: the uniform B-spline whose
+    /// control points `c` solve `c[i-1] + 4·c[i] + c[i+1] = 6·p[i]` (zero curvature at open
+    /// ends, wrapping on a loop). Each particle pulls the whole curve, by a weight that falls
+    /// by `2 - √3 ≈ 0.27` a particle. The spans bulge past the particles by at most
+    /// `max |p[i-1] - 2·p[i] + p[i+1]| / 2` (the control points' offset); the drawn velocity
+    /// is at most 1.55 times the fastest particle's (`Σ|w| < 1.55`).
+    NaturalSpline,
+}
+
+impl Smoothing {
+    /// The particle weights of span `span` at `t` of the open (or `closed`) curve of `K`
+    /// particles: see [`Smoothed::weights`]. Depends on the basis only, not on the particles.
+    pub(crate) fn weights<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        span: usize,
+        t: S,
+        weights: &mut [S; K],
+    ) {
+        self.row_weights(closed, K, span, t, weights);
+    }
+
+    /// [`weights`](Self::weights) of the curve through the first `n` of the `K` particles
+    /// (`2 ≤ n ≤ K`; a piece of a broken rope): the later particles weigh 0. One Bézier
+    /// repeats the `n`-th particle up to degree `K - 1`, as [`Smoothed`] builds it.
+    pub(crate) fn row_weights<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        n: usize,
+        span: usize,
+        t: S,
+        weights: &mut [S; K],
+    ) {
+        let len = if closed { K } else { n.clamp(2.min(K), K) };
+        let t = crate::curves::curve::clamp_unit(t);
+        let zero = S::ZERO;
+        let (t2, sixth, half) = (t * t, S::ratio(1, 6), S::ratio(1, 2));
+        let t3 = t2 * t;
+        let n = |k: i16| S::from_i16(k);
+        let local = match self {
+            Smoothing::Bezier => {
+                crate::curves::sampler::bernstein_weights(t, weights);
+                let repeated: S = weights[len..].iter().fold(zero, |sum, &w| sum + w);
+                weights[len - 1] += repeated;
+                weights[len..].fill(zero);
+                return;
+            }
+            Smoothing::Polyline => [zero, S::ONE - t, t, zero],
+            Smoothing::NaturalSpline => {
+                Smoothing::BSpline.row_weights(closed, len, span, t, weights);
+                return natural_weights(weights, closed, len);
+            }
+            Smoothing::BSpline => {
+                let s = S::ONE - t;
+                [
+                    s * s * s * sixth,
+                    (n(3) * t3 - n(6) * t2 + n(4)) * sixth,
+                    (n(-3) * t3 + n(3) * t2 + n(3) * t + S::ONE) * sixth,
+                    t3 * sixth,
+                ]
+            }
+            Smoothing::CatmullRom => [
+                (-t3 + n(2) * t2 - t) * half,
+                (n(3) * t3 - n(5) * t2 + n(2)) * half,
+                (n(-3) * t3 + n(4) * t2 + t) * half,
+                (t3 - t2) * half,
+            ],
+        };
+        fold(local, closed, span, len, weights);
+    }
+
+    /// The derivatives `d/dt` of [`weights`](Self::weights) at the same point: the particle
+    /// weights of the curve's velocity along span `span` (per unit of the span's `t`).
+    pub(crate) fn slopes<S: Scalar, const K: usize>(
+        self,
+        closed: bool,
+        span: usize,
+        t: S,
+        slopes: &mut [S; K],
+    ) {
+        let t = crate::curves::curve::clamp_unit(t);
+        let zero = S::ZERO;
+        let (t2, half) = (t * t, S::ratio(1, 2));
+        let n = |k: i16| S::from_i16(k);
+        let local = match self {
+            Smoothing::Bezier => {
+                // B'_i = (K-1)·(B_{i-1} - B_i) over the Bernstein basis of degree K-2.
+                let mut lower = [zero; K];
+                crate::curves::sampler::bernstein_weights(t, &mut lower[..K - 1]);
+                let degree = S::ratio((K - 1) as u32, 1);
+                for i in 0..K {
+                    let before = if i > 0 { lower[i - 1] } else { zero };
+                    let here = if i < K - 1 { lower[i] } else { zero };
+                    slopes[i] = (before - here) * degree;
+                }
+                return;
+            }
+            Smoothing::Polyline => [zero, -S::ONE, S::ONE, zero],
+            Smoothing::NaturalSpline => {
+                Smoothing::BSpline.slopes(closed, span, t, slopes);
+                return natural_weights(slopes, closed, K);
+            }
+            Smoothing::BSpline => {
+                let s = S::ONE - t;
+                [
+                    -s * s * half,
+                    (n(3) * t2 - n(4) * t) * half,
+                    (n(-3) * t2 + n(2) * t + S::ONE) * half,
+                    t2 * half,
+                ]
+            }
+            Smoothing::CatmullRom => [
+                (n(-3) * t2 + n(4) * t - S::ONE) * half,
+                (n(9) * t2 - n(10) * t) * half,
+                (n(-9) * t2 + n(8) * t + S::ONE) * half,
+                (n(3) * t2 - n(2) * t) * half,
+            ],
+        };
+        fold(local, closed, span, K, slopes);
+    }
+}
+
+/// Writes the local weights of particles `span-1 ..= span+2` of a spline over the first `n`
+/// of `K` particles (`2 ≤ n ≤ K`; all `K` when `closed`) into `weights` (zero elsewhere),
+/// `span` clamped to the last: open ends reflect a phantom particle through the end one
+/// (`2·p0 - p1`), as the spans were built; a closed curve wraps.
+fn fold<S: Scalar, const K: usize>(
+    local: [S; 4],
+    closed: bool,
+    span: usize,
+    n: usize,
+    weights: &mut [S; K],
+) {
+    *weights = [S::ZERO; K];
+    let spans = if closed { K } else { n.saturating_sub(1) };
+    let span = span.min(spans.saturating_sub(1));
+    for (k, w) in local.into_iter().enumerate() {
+        let i = span as isize + k as isize - 1;
+        let last = n as isize - 1;
+        if closed {
+            weights[i.rem_euclid(K as isize) as usize] += w;
+        } else if i < 0 {
+            weights[0] += w + w;
+            weights[1] -= w;
+        } else if i > last {
+            weights[n - 1] += w + w;
+            weights[n - 2] -= w;
+        } else {
+            weights[i as usize] += w;
+        }
+    }
+}
+
+/// The curve a [`Smoothing`] makes of `K` particles, ready to sample or measure.
+///
+/// Built in `O(K)` from checked particles; sampling and measuring then cannot fail on the
+/// curve, only on the buffer. Size: `K` cubic spans (`32·K` bytes for `Vec2<f32>`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Smoothed<P, const K: usize> {
+    pieces: Pieces<P, K>,
+    method: Smoothing,
+    /// The particles it is drawn through: the first `len` of the `K`.
+    len: usize,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Pieces<P, const K: usize> {
+    /// One Bézier curve over all the particles.
+    Whole(Bezier<P, K>),
+    /// The first `count` cubic spans.
+    Cubic([Bezier<P, 4>; K], usize),
+    /// The first `count` straight segments.
+    Straight([Bezier<P, 2>; K], usize),
+}
+
+impl<P: Point, const K: usize> Smoothed<P, K> {
+    /// The open curve through a row of particles: `K - 1` spans from the first particle to
+    /// the last, which it starts and ends on.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] when a particle is NaN, infinite,
+    /// saturated or beyond [`Scalar::SAFE_RANGE`].
+    // Inlined so that a constant `method` folds away the other methods' code (flash on a device).
+    #[inline]
+    pub fn open(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
+        const { assert!(K >= 2, "smoothing needs at least 2 particles") };
+        check_points(particles, "particles")?;
+        let pieces = match method {
+            Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(*particles)),
+            Smoothing::BSpline => Pieces::Cubic(bspline_spans(particles, K), K - 1),
+            Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(particles, K), K - 1),
+            Smoothing::NaturalSpline => {
+                let mut controls = *particles;
+                natural_open(&mut controls, K);
+                Pieces::Cubic(bspline_spans(&controls, K), K - 1)
+            }
+            Smoothing::Polyline => Pieces::Straight(segments(particles, K), K - 1),
+        };
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: K,
+        })
+    }
+
+    /// The open curve through the first `n` particles (`2 ≤ n ≤ K`, clamped): a piece of a
+    /// broken rope. One Bézier repeats the `n`-th particle up to degree `K - 1`. Its
+    /// [`weights`](Self::weights) are those of the piece (0 past its `n` particles).
+    pub(crate) fn open_first(
+        method: Smoothing,
+        particles: &[P; K],
+        n: usize,
+    ) -> Result<Self, Error> {
+        let n = n.clamp(2.min(K), K);
+        let mut row = *particles;
+        for p in &mut row[n..] {
+            *p = particles[n - 1];
+        }
+        check_points(&row, "particle")?;
+        let pieces = match method {
+            Smoothing::Bezier => Pieces::Whole(Bezier::new_unchecked(row)),
+            Smoothing::BSpline => Pieces::Cubic(bspline_spans(&row, n), n - 1),
+            Smoothing::CatmullRom => Pieces::Cubic(catmull_rom_spans(&row, n), n - 1),
+            Smoothing::NaturalSpline => {
+                natural_open(&mut row, n);
+                Pieces::Cubic(bspline_spans(&row, n), n - 1)
+            }
+            Smoothing::Polyline => Pieces::Straight(segments(&row, n), n - 1),
+        };
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: n,
+        })
+    }
+
+    /// The closed curve through a ring of particles (a loop topology): `K` spans, wrapping
+    /// from the last particle back to the first with no seam. [`Smoothing::BSpline`] is C²
+    /// all round, [`Smoothing::CatmullRom`] passes through every particle,
+    /// [`Smoothing::Polyline`] joins them straight. The samples start and end on the same
+    /// point, so a polyline through them closes.
+    ///
+    /// ```
+    /// use dunas::{Vec2, smooth::{Smoothed, Smoothing}};
+    /// let square = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+    /// let mut out = [Vec2::default(); 17];
+    /// assert_eq!(Smoothed::closed(Smoothing::CatmullRom, &square)?.sample(&mut out), Ok(17));
+    /// assert_eq!(out[0], out[16]);
+    /// assert_eq!(out[4], square[1]); // 4 segments per span: particle k at sample 4k
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`open`](Self::open); [`Error::InvalidParameter`] for [`Smoothing::Bezier`], since
+    /// one Bézier curve cannot close smoothly.
+    pub fn closed(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
+        const { assert!(K >= 3, "a closed loop needs at least 3 particles") };
+        Self::ring(method, particles)
+    }
+
+    /// [`closed`](Self::closed) for any `K`: [`Error::InvalidParameter`] below 3 particles.
+    pub(crate) fn ring(method: Smoothing, particles: &[P; K]) -> Result<Self, Error> {
+        if K < 3 {
+            return Err(invalid("particle count", "at least 3 for a closed curve"));
+        }
+        check_points(particles, "particles")?;
+        let mut controls = *particles;
+        if method == Smoothing::NaturalSpline {
+            natural_controls(&mut controls, true);
+        }
+        let at = |i: usize| controls[i % K];
+        let sixth = P::Scalar::ratio(1, 6);
+        let third = P::Scalar::ratio(1, 3);
+        let pieces = match method {
+            Smoothing::Bezier => {
+                return Err(invalid(
+                    "smoothing",
+                    "a spline or the polyline (one Bezier cannot close)",
+                ));
+            }
+            Smoothing::Polyline => Pieces::Straight(
+                core::array::from_fn(|i| Bezier::new_unchecked([at(i), at(i + 1)])),
+                K,
+            ),
+            Smoothing::CatmullRom => Pieces::Cubic(
+                core::array::from_fn(|i| {
+                    let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
+                    Bezier::new_unchecked([a, a + (b - prev) * sixth, b - (next - a) * sixth, b])
+                }),
+                K,
+            ),
+            Smoothing::BSpline | Smoothing::NaturalSpline => Pieces::Cubic(
+                core::array::from_fn(|i| {
+                    let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
+                    let step = b - a;
+                    Bezier::new_unchecked([
+                        knot(prev, a, b),
+                        a + step * third,
+                        b - step * third,
+                        knot(a, b, next),
+                    ])
+                }),
+                K,
+            ),
+        };
+        Ok(Smoothed {
+            pieces,
+            method,
+            len: K,
+        })
+    }
+
+    /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
+    /// Bézier writes what [`Bezier::sample`] writes. Spans write `spans·s + 1` points,
+    /// `s` segments a span: `s = ⌊(out.len() - 1) / spans⌋` in floats, the largest power of
+    /// two up to that in `Q16` (dyadic parameters, no multiplication).
+    ///
+    /// # Errors
+    /// [`Error::BufferTooSmall`] when `out` holds fewer than `spans + 1` points.
+    #[inline]
+    pub fn sample(&self, out: &mut [P]) -> Result<usize, Error> {
+        self.sample_with(&DefaultSampler, out)
+    }
+
+    /// Samples the curve with `sampler` for its cubic spans ([`Smoothing::BSpline`] and
+    /// [`Smoothing::CatmullRom`]); one Bézier and straight segments use the
+    /// [`DefaultSampler`]. See [`Sampler::sample_joined`] for the count.
+    ///
+    /// ```
+    /// use dunas::{Vec2, sampler::BernsteinTable, smooth::{Smoothed, Smoothing}};
+    /// let rope = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, -1.0), Vec2::new(2.0, -1.0), Vec2::new(3.0, 0.0)];
+    /// let table = BernsteinTable::<f32, 4, 9>::new(); // 8 segments a span, built once
+    /// let mut out = [Vec2::default(); 64];
+    /// let n = Smoothed::open(Smoothing::BSpline, &rope)?.sample_with(&table, &mut out)?;
+    /// assert_eq!(n, 25);
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Sampler::sample_joined`].
+    pub fn sample_with(&self, sampler: &impl Sampler<P, 4>, out: &mut [P]) -> Result<usize, Error> {
+        match &self.pieces {
+            Pieces::Whole(curve) => DefaultSampler.sample_joined(core::slice::from_ref(curve), out),
+            Pieces::Cubic(spans, count) => sampler.sample_joined(&spans[..*count], out),
+            Pieces::Straight(segments, count) => {
+                DefaultSampler.sample_joined(&segments[..*count], out)
+            }
+        }
+    }
+
+    /// The cubic spans (empty for one Bézier or straight segments).
+    pub(crate) fn cubic_spans(&self) -> &[Bezier<P, 4>] {
+        match &self.pieces {
+            Pieces::Cubic(spans, count) => &spans[..*count],
+            _ => &[],
+        }
+    }
+
+    /// Number of spans: 1 for one Bézier, `K - 1` open, `K` closed.
+    pub fn span_count(&self) -> usize {
+        match self.pieces {
+            Pieces::Whole(_) => 1,
+            Pieces::Cubic(_, count) | Pieces::Straight(_, count) => count,
+        }
+    }
+
+    /// The point of span `span` at `t` in `[0, 1]` (`t` clamped; a span past the last is the
+    /// last). De Casteljau on the span: 6 lerps for a cubic span, `K²/2` for one Bézier.
+    pub fn point(&self, span: usize, t: P::Scalar) -> P {
+        let t = crate::curves::curve::clamp_unit(t);
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.eval(t),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].eval(t),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].eval(t),
+        }
+    }
+
+    /// The parameter of span `span` whose point has the least `key`: see
+    /// [`Bezier::deepest`](crate::Bezier). Halving only (no multiplication in `Q16`).
+    pub(crate) fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.deepest(key),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].deepest(key),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].deepest(key),
+        }
+    }
+
+    /// The box of span `span`'s control points, which holds the span (convex hull property).
+    pub fn span_bounds(&self, span: usize) -> Aabb<P> {
+        let points: &[P] = match &self.pieces {
+            Pieces::Whole(curve) => curve.points(),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].points(),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].points(),
+        };
+        Aabb::from_points(points).unwrap_or(Aabb::point(P::default()))
+    }
+
+    /// How much each particle weighs in the point of span `span` at `t`: the point is
+    /// `Σ weights[i] · particles[i]`, and the weights sum to 1. At most 4 are non-zero for the
+    /// splines, 2 for the polyline, all `K` for one Bézier; Catmull-Rom's can be negative
+    /// (down to -1/16, with `Σ|w| <= 5/4`). A force or a correction at that point reaches the
+    /// particles through these weights.
+    pub fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
+        let closed = self.span_count() == K;
+        self.method.row_weights(closed, self.len, span, t, weights);
+    }
+
+    /// Length of the curve within `accuracy` (see [`Bezier::arclen`]), shared between the
+    /// spans; a polyline's length is exact.
+    pub fn length(&self, accuracy: P::Scalar) -> P::Scalar {
+        let share = accuracy / P::Scalar::from_i16(self.span_count().min(i16::MAX as usize) as i16);
+        let mut len = P::Scalar::ZERO;
+        match &self.pieces {
+            Pieces::Whole(curve) => len = curve.arclen(accuracy),
+            Pieces::Cubic(spans, count) => {
+                for span in &spans[..*count] {
+                    len += span.arclen(share);
+                }
+            }
+            Pieces::Straight(segments, count) => {
+                for s in &segments[..*count] {
+                    len += s.start().distance(s.end());
+                }
+            }
+        }
+        len
+    }
+}
+
+/// Turns a row (or, `closed`, a ring) of particles into the B-spline control points whose
+/// curve passes through every particle: `c = p + e`, with `e[i-1] + 4·e[i] + e[i+1]` the
+/// negated second difference of the particles (0 at open ends). Solving for the offset keeps
+/// every intermediate within the particles' differences (fixed point stays in range).
+pub(crate) fn natural_controls<P: Point, const K: usize>(points: &mut [P; K], closed: bool) {
+    if !closed {
+        return natural_open(points, K);
+    }
+    let mut offset = curvature(points, closed);
+    for e in &mut offset {
+        *e = -*e;
+    }
+    solve_tridiagonal(&mut offset, closed);
+    for (p, e) in points.iter_mut().zip(offset) {
+        *p += e;
+    }
+}
+
+/// [`natural_controls`] of the first `n ≤ K` particles of an open row (the rest untouched).
+fn natural_open<P: Point, const K: usize>(points: &mut [P; K], n: usize) {
+    let n = n.min(K);
+    let mut offset = [P::default(); K];
+    for i in 1..n.saturating_sub(1) {
+        offset[i] = (points[i] - points[i - 1]) - (points[i + 1] - points[i]);
+    }
+    solve_open(&mut offset, n);
+    for (p, e) in points[..n].iter_mut().zip(offset) {
+        *p += e;
+    }
+}
+
+/// The particle weights of a natural spline from the B-spline weights `w` of its control
+/// points (see [`natural_controls`]): the transpose of that map, `w - Δ²(A⁻¹·w)`, since the
+/// tridiagonal `A` and the second difference `Δ²` are both symmetric. An open curve through
+/// the first `n` particles has `w` zero past them, and so has the result.
+fn natural_weights<S: Scalar, const K: usize>(w: &mut [S; K], closed: bool, n: usize) {
+    let mut y = *w;
+    if closed {
+        solve_tridiagonal(&mut y, true);
+    } else {
+        (y[0], y[n - 1]) = (S::ZERO, S::ZERO);
+        solve_open::<S, S, K>(&mut y, n);
+    }
+    for (w, d) in w.iter_mut().zip(curvature(&y, closed)) {
+        *w -= d;
+    }
+}
+
+/// The second differences `v[i-1] - 2·v[i] + v[i+1]`, wrapping when `closed`, else with
+/// `v[-1] = v[K] = 0`.
+fn curvature<T, const K: usize>(v: &[T; K], closed: bool) -> [T; K]
+where
+    T: Copy + Default + Add<Output = T> + Sub<Output = T>,
+{
+    core::array::from_fn(|i| {
+        let (prev, next) = if closed {
+            (v[(i + K - 1) % K], v[(i + 1) % K])
+        } else {
+            let prev = if i > 0 { v[i - 1] } else { T::default() };
+            (prev, v.get(i + 1).copied().unwrap_or_default())
+        };
+        (prev - v[i]) + (next - v[i])
+    })
+}
+
+/// Solves `x[i-1] + 4·x[i] + x[i+1] = r[i]` in place: over the inner entries with
+/// `x[0] = x[K-1] = 0` for an open row (Thomas' algorithm, `O(K)`), or wrapping round a ring
+/// (its inverse is the circulant `g(d) = (ρ^d + ρ^(K-d)) / (2√3·(1 - ρ^K))`, `ρ = √3 - 2`;
+/// `O(K²)`). The system is diagonally dominant: `|x| ≤ |r| / 2`.
+fn solve_tridiagonal<T, S: Scalar, const K: usize>(r: &mut [T; K], closed: bool)
+where
+    T: Copy + Default + Add<Output = T> + Sub<Output = T> + Mul<S, Output = T>,
+{
+    if closed {
+        let rho = S::from_i16(3).sqrt() - S::from_i16(2);
+        let mut power = [S::ONE; K]; // ρ^d
+        for d in 1..K {
+            power[d] = power[d - 1] * rho;
+        }
+        let wrap = power[K - 1] * rho; // ρ^K
+        let scale = S::ONE / ((S::ONE - wrap) * S::from_i16(12).sqrt());
+        let g = |d: usize| (power[d] + if d == 0 { wrap } else { power[K - d] }) * scale;
+        let rhs = *r;
+        for (i, x) in r.iter_mut().enumerate() {
+            *x = rhs
+                .iter()
+                .enumerate()
+                .fold(T::default(), |acc, (j, &rj)| acc + rj * g((i + K - j) % K));
+        }
+        return;
+    }
+    solve_open::<T, S, K>(r, K);
+}
+
+/// The open case of [`solve_tridiagonal`] over the first `n ≤ K` entries (Thomas'
+/// algorithm, `x[0] = x[n-1] = 0`); later entries are left alone.
+fn solve_open<T, S: Scalar, const K: usize>(r: &mut [T; K], n: usize)
+where
+    T: Copy + Default + Add<Output = T> + Sub<Output = T> + Mul<S, Output = T>,
+{
+    let n = n.min(K);
+    if n < 3 {
+        for x in &mut r[..n] {
+            *x = T::default();
+        }
+        return;
+    }
+    // Forward: gamma[i] = 1 / (4 - gamma[i-1]), r[i] = (r[i] - r[i-1]) · gamma[i].
+    let mut gamma = [S::ZERO; K];
+    r[0] = T::default();
+    for i in 1..n - 1 {
+        gamma[i] = S::ONE / (S::from_i16(4) - gamma[i - 1]);
+        r[i] = (r[i] - r[i - 1]) * gamma[i];
+    }
+    // Back: x[i] = r[i] - gamma[i] · x[i+1].
+    r[n - 1] = T::default();
+    for i in (1..n - 1).rev() {
+        r[i] = r[i] - r[i + 1] * gamma[i];
+    }
+}
+
+/// The B-spline knot point `(p + 4q + r) / 6`, written as `q` plus scaled differences so that
+/// no intermediate sum leaves the range.
+#[inline]
+fn knot<P: Point>(p: P, q: P, r: P) -> P {
+    let sixth = P::Scalar::ratio(1, 6);
+    q + (p - q) * sixth + (r - q) * sixth
+}
+
+/// The `n - 1` B-spline spans of the first `n` of an open row (later entries unused);
+/// phantom ends reflected through the end particles clamp the curve to them.
+fn bspline_spans<P: Point, const K: usize>(d: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
+    let third = P::Scalar::ratio(1, 3);
+    let two_thirds = P::Scalar::ratio(2, 3);
+    let knot_at = |i: usize| -> P {
+        if i == 0 || i + 1 >= n {
+            d[i]
+        } else {
+            knot(d[i - 1], d[i], d[i + 1])
+        }
+    };
+    core::array::from_fn(|i| {
+        if i + 1 >= n {
+            return Bezier::new_unchecked([d[n - 1]; 4]);
+        }
+        let step = d[i + 1] - d[i];
+        Bezier::new_unchecked([
+            knot_at(i),
+            d[i] + step * third,
+            d[i] + step * two_thirds,
+            knot_at(i + 1),
+        ])
+    })
+}
+
+/// The `n - 1` Catmull-Rom spans of the first `n` of an open row (later entries unused).
+fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
+    let sixth = P::Scalar::ratio(1, 6);
+    let third = P::Scalar::ratio(1, 3);
+    core::array::from_fn(|i| {
+        if i + 1 >= n {
+            return Bezier::new_unchecked([p[n - 1]; 4]);
+        }
+        // Tangent at a particle: (next - previous) / 2; a phantom end reflected through
+        // the last particle makes it (next - this) at the ends.
+        let out_handle = if i == 0 {
+            (p[1] - p[0]) * third
+        } else {
+            (p[i + 1] - p[i - 1]) * sixth
+        };
+        let in_handle = if i + 2 >= n {
+            (p[i + 1] - p[i]) * third
+        } else {
+            (p[i + 2] - p[i]) * sixth
+        };
+        Bezier::new_unchecked([p[i], p[i] + out_handle, p[i + 1] - in_handle, p[i + 1]])
+    })
+}
+
+/// The `n - 1` straight segments of the first `n` of an open row (later entries unused).
+fn segments<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 2>; K] {
+    core::array::from_fn(|i| Bezier::new_unchecked([p[i], p[(i + 1).min(n - 1)]]))
+}
+
+#[cfg(all(test, dunas_floats))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    fn zigzag() -> [Vec2<f64>; 6] {
+        core::array::from_fn(|i| Vec2::new(i as f64, if i % 2 == 0 { 0.0 } else { 1.0 }))
+    }
+
+    #[test]
+    fn every_method_hits_the_ends() {
+        let p = zigzag();
+        for m in [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::Polyline,
+            Smoothing::NaturalSpline,
+        ] {
+            let mut out = [Vec2::default(); 18];
+            let n = Smoothed::open(m, &p).unwrap().sample(&mut out).unwrap();
+            // 5 spans of 3 segments, or one Bézier filling the buffer.
+            assert_eq!(n, if m == Smoothing::Bezier { 18 } else { 16 }, "{m:?}");
+            assert_eq!(out[0], p[0], "{m:?}");
+            assert_eq!(out[n - 1], p[5], "{m:?}");
+        }
+    }
+
+    #[test]
+    fn catmull_rom_and_polyline_pass_through_particles() {
+        let p = zigzag();
+        let mut out = [Vec2::default(); 26]; // 5 spans × 5 + 1: particle k at sample 5k
+        for m in [
+            Smoothing::CatmullRom,
+            Smoothing::Polyline,
+            Smoothing::NaturalSpline,
+        ] {
+            Smoothed::open(m, &p).unwrap().sample(&mut out).unwrap();
+            for (k, &pk) in p.iter().enumerate() {
+                assert!((out[5 * k] - pk).length() < 1e-12, "{m:?} particle {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn bspline_joins_are_c2() {
+        let p = zigzag();
+        let s = bspline_spans(&p, p.len());
+        for i in 0..p.len() - 2 {
+            let (a, b) = (*s[i].points(), *s[i + 1].points());
+            assert_eq!(a[3], b[0]);
+            // C1: equal first derivatives; C2: equal second derivatives at the join.
+            assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);
+            let a2 = a[3] - a[2] * 2.0 + a[1];
+            let b2 = b[2] - b[1] * 2.0 + b[0];
+            assert!((a2 - b2).length() < 1e-12);
+        }
+    }
+
+    /// The natural spline passes through every particle of a row and of a ring, is C² at
+    /// every joint (it is a B-spline), has no curvature at open ends, and its particle
+    /// weights stay within the documented `Σ|w| < 1.55`.
+    #[test]
+    fn natural_spline_interpolates_with_c2_joins() {
+        let p = zigzag();
+        for closed in [false, true] {
+            let curve = if closed {
+                Smoothed::closed(Smoothing::NaturalSpline, &p).unwrap()
+            } else {
+                Smoothed::open(Smoothing::NaturalSpline, &p).unwrap()
+            };
+            let Pieces::Cubic(s, count) = curve.pieces else {
+                panic!("cubic spans")
+            };
+            for i in 0..count {
+                let a = *s[i].points();
+                assert!((a[0] - p[i]).length() < 1e-12, "{closed} {i}");
+                assert!((a[3] - p[(i + 1) % 6]).length() < 1e-12, "{closed} {i}");
+                if i + 1 < count || closed {
+                    let b = *s[(i + 1) % count].points();
+                    let a2 = a[3] - a[2] * 2.0 + a[1];
+                    let b2 = b[2] - b[1] * 2.0 + b[0];
+                    assert!((a2 - b2).length() < 1e-12, "{closed} {i}");
+                }
+            }
+            if !closed {
+                let a = *s[0].points();
+                assert!((a[2] - a[1] * 2.0 + a[0]).length() < 1e-12);
+            }
+            let mut w = [0.0; 6];
+            for span in 0..count {
+                for k in 0..=16 {
+                    curve.weights(span, k as f64 / 16.0, &mut w);
+                    assert!(w.iter().map(|w| w.abs()).sum::<f64>() < 1.55, "{w:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn catmull_rom_joins_are_c1() {
+        let p = zigzag();
+        let s = catmull_rom_spans(&p, p.len());
+        for i in 0..p.len() - 2 {
+            let (a, b) = (*s[i].points(), *s[i + 1].points());
+            assert!(((a[3] - a[2]) - (b[1] - b[0])).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn closed_loops_have_no_seam() {
+        let ring: [Vec2<f64>; 6] = core::array::from_fn(|i| {
+            let a = i as f64 * core::f64::consts::TAU / 6.0;
+            Vec2::new(a.cos(), a.sin())
+        });
+        let mut out = [Vec2::default(); 6 * 8 + 1];
+        for m in [
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::NaturalSpline,
+        ] {
+            Smoothed::closed(m, &ring)
+                .unwrap()
+                .sample(&mut out)
+                .unwrap();
+            // The same distance from the centre all round, and rotating the ring only
+            // rotates the curve: the seam at particle 0 is like every other joint.
+            let r0 = out[0].length();
+            for o in &out {
+                assert!((o.length() - r0).abs() < 0.05, "{m:?}");
+            }
+            let rotated: [Vec2<f64>; 6] = core::array::from_fn(|i| ring[(i + 1) % 6]);
+            let mut out2 = [Vec2::default(); 6 * 8 + 1];
+            Smoothed::closed(m, &rotated)
+                .unwrap()
+                .sample(&mut out2)
+                .unwrap();
+            for k in 0..out.len() - 8 {
+                assert!((out[k + 8] - out2[k]).length() < 1e-12, "{m:?} {k}");
+            }
+        }
+        assert!(matches!(
+            Smoothed::closed(Smoothing::Bezier, &ring),
+            Err(Error::InvalidParameter { .. })
+        ));
+    }
+
+    #[test]
+    fn weights_rebuild_every_drawn_point() {
+        let p = zigzag();
+        for closed in [false, true] {
+            for m in [
+                Smoothing::Bezier,
+                Smoothing::BSpline,
+                Smoothing::CatmullRom,
+                Smoothing::Polyline,
+                Smoothing::NaturalSpline,
+            ] {
+                let Ok(curve) = (if closed {
+                    Smoothed::closed(m, &p)
+                } else {
+                    Smoothed::open(m, &p)
+                }) else {
+                    continue;
+                };
+                let mut w = [0.0; 6];
+                for span in 0..curve.span_count() {
+                    for k in 0..=8 {
+                        let t = k as f64 / 8.0;
+                        curve.weights(span, t, &mut w);
+                        let rebuilt = p
+                            .iter()
+                            .zip(&w)
+                            .fold(Vec2::default(), |acc, (&pi, &wi)| acc + pi * wi);
+                        let drawn = curve.point(span, t);
+                        assert!(
+                            (rebuilt - drawn).length() < 1e-12,
+                            "{m:?} {closed} {span} {t}"
+                        );
+                        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input_is_an_error() {
+        let mut p = zigzag();
+        let mut out = [Vec2::default(); 8];
+        let curve = Smoothed::open(Smoothing::BSpline, &p).unwrap();
+        assert_eq!(
+            curve.sample(&mut out[..5]),
+            Err(Error::BufferTooSmall { needed: 6, got: 5 })
+        );
+        p[3].y = f64::NAN;
+        assert!(matches!(
+            Smoothed::open(Smoothing::Polyline, &p),
+            Err(Error::NonFinite { .. })
+        ));
+    }
+
+    #[test]
+    fn straight_particles_give_a_straight_curve() {
+        let p: [Vec2<f64>; 5] = core::array::from_fn(|i| Vec2::new(2.0 * i as f64, 0.0));
+        for m in [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::NaturalSpline,
+        ] {
+            let mut out = [Vec2::default(); 9];
+            Smoothed::open(m, &p).unwrap().sample(&mut out).unwrap();
+            for (i, o) in out.iter().enumerate() {
+                assert!(
+                    (o.x - i as f64).abs() < 1e-12 && o.y == 0.0,
+                    "{m:?} {i} {o:?}"
+                );
+            }
+        }
+    }
+}

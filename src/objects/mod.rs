@@ -1,0 +1,8 @@
+//! The game objects: [`Rope`](crate::Rope), [`Cloth`](crate::Cloth) and the
+//! [`SplineRope`](crate::objects::spline_rope::SplineRope), and how ropes snap and are cut. Uses every
+//! layer below (physics, contacts, curves).
+
+pub mod breaking;
+pub(crate) mod cloth;
+pub(crate) mod rope;
+pub mod spline_rope;

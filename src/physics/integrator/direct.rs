@@ -1,0 +1,421 @@
+//! Every spring of a rope or a cloth solved together: one banded factorisation a solve and a
+//! back-substitution an iteration, whatever the stiffness (projective dynamics).
+
+use super::{Integrator, Model, State, sealed, tiny_length};
+use crate::physics::force::ForceField;
+use crate::physics::shape::Shape;
+use crate::physics::spring::Topology;
+use crate::{Point, Scalar};
+
+/// The springs of a rope or a cloth solved together by a direct, banded solve: stable at
+/// any stiffness with one solve a frame. Made for cloth held along its edges (a sail, a
+/// flag, an awning): the boat scene's sail takes one solve a frame where symplectic Euler
+/// takes 8 substeps.
+///
+/// Each solve predicts the motion from gravity, damping and the force fields (`y`), then
+/// finds the positions `x` that minimise `½ |x − y|²_M + ½ h² Σ k |xa − xb − p|²`, `p` each
+/// spring's direction at its rest length (projective dynamics, Bouaziz et al. 2014; the
+/// mass-spring form of Liu et al. 2013). The matrix `M + h² Σ k (ea − eb)(ea − eb)ᵀ` does not
+/// depend on the positions; for the springs whose ends are at most
+/// [`Shape::BAND`](crate::physics::shape::Shape::BAND) apart in flat order (every spring of a rope or
+/// a cloth) it is banded. The system keeps its factor (`LDLᵀ`, no pivoting: the matrix is
+/// positive definite) in its [`Factored`] memory and factors again only when the step's
+/// length, a mass, a pin or a spring changed (a `hang`, a `release`, a snap, a cut, another
+/// `dt`: use [`FixedTimestep`](crate::FixedTimestep) to keep it). Each of `iterations`
+/// points every spring at its rest length from the positions so far (the first from where
+/// the velocities alone would carry the particles, so a loaded cloth at rest stays in its
+/// balance) and solves for the change of the positions (a forward and a back substitution).
+/// A spring wider than the band (a hub, a weld) puts its stiffness on its free ends'
+/// diagonals only (a block-Jacobi split: converged iterations reach the same positions). A
+/// held particle moves with its hand through the solves and enters them as a fixed end.
+/// Velocities are each solve's displacement over its length. Contacts are resolved after
+/// each solve.
+///
+/// A spring's `damping` `c` acts along it from the velocities at the solve's start, as an
+/// explicit force clamped to what stops its ends' closing speed in one solve
+/// (`c ≤ 1 / (h (wa + wb))`).
+///
+/// Measured (`tests/physics.rs`, `direct_springs_*`; `docs/summary.md`, section (j)):
+/// - the boat scene's sail in a steady wind rests within 0.04 mm of the balance symplectic
+///   Euler reaches in `f64` (1.6 mm in `Q16`); a hanging rope sags as statics says at every
+///   stiffness from 10² to 10⁸ N/m, one substep a frame;
+/// - it damps, as backward Euler does: an undamped released rope keeps 34% of its swing's
+///   energy over 10 s (17% to 22% with a bob of 1 to 10 times its mass), against 96% for
+///   symplectic Euler;
+/// - motion that turns stiff springs is slowed: each iteration turns the springs' directions
+///   only part of the way, by about `m / (h² k)`. A 1 kg, 8×8 cloth of 900 N/m let go of all
+///   but one pin swings down 46% as far as it should in its first half second with one
+///   iteration, 86% with four; 10 times stiffer, 8% and 26%. For cloth that swings free,
+///   raise `iterations` or `substeps`; for a rope under a heavy bob, use
+///   [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m stretches it
+///   1.7% here).
+///
+/// Cost per solve, `n` particles and band `b` (2 for a rope, `2U` for a cloth): a factor,
+/// when something changed, of about `n·b²/2` multiply-adds; per iteration a square root and a
+/// division a spring and `2·n·b` vector multiply-adds. The same at every stiffness. On a
+/// Cortex-M4F the 8×8 sail (band 16) takes about 100 000 instructions a step and 80 000 more
+/// for a new factor (`examples/mcu_sail.rs`). Memory: the factor, `n·(b + 1)` scalars in the
+/// system (4.4 KB for the 8×8 sail in `f32`), and about `n·12` scalars of stack in 3D.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DirectSprings {
+    /// Iterations a solve, each a spring direction update and a back-substitution (1 by
+    /// default); 0 counts as 1.
+    pub iterations: u8,
+    /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
+    pub substeps: u8,
+}
+
+impl Default for DirectSprings {
+    /// One solve of one iteration a step.
+    fn default() -> Self {
+        DirectSprings {
+            iterations: 1,
+            substeps: 1,
+        }
+    }
+}
+
+impl sealed::Sealed for DirectSprings {}
+
+impl Integrator for DirectSprings {
+    type Memory<S: Scalar, Sh: Shape> = Factored<S, Sh>;
+
+    fn memory<S: Scalar, Sh: Shape>() -> Factored<S, Sh> {
+        Factored {
+            key: None,
+            factor: Factor {
+                low: Sh::filled(Sh::band(S::ZERO)),
+                inv_d: Sh::filled(S::ZERO),
+            },
+        }
+    }
+
+    fn stability_limit<S: Scalar>(&self) -> Option<S> {
+        None
+    }
+
+    fn force_evaluations(&self) -> u32 {
+        u32::from(self.substeps.max(1))
+    }
+
+    fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> bool {
+        let memory = &mut Self::memory();
+        let times = (h, P::Scalar::ZERO);
+        self.substep_touching(model, state, memory, times, forces, &mut |_, _| {})
+    }
+
+    /// Each solve ends with the contacts.
+    fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        memory: &mut Factored<P::Scalar, Sh>,
+        (h, lag): (P::Scalar, P::Scalar),
+        forces: &mut F,
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> bool {
+        let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
+            self.solve_step(model, state, memory, hs, forces)
+        };
+        super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
+    }
+}
+
+/// What [`DirectSprings`] keeps inside its system between steps: the factor of its last
+/// matrix and a 64-bit key of what made it (the step's length, every inverse mass, every
+/// live spring's ends and stiffness). A step whose key is the same solves with the factor
+/// kept; any change (a pin, a hang, a snap or a cut, another `dt`) factors again.
+pub struct Factored<S: Scalar, Sh: Shape> {
+    key: Option<u64>,
+    factor: Factor<S, Sh>,
+}
+
+impl<S: Scalar, Sh: Shape> Clone for Factored<S, Sh> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: Scalar, Sh: Shape> Copy for Factored<S, Sh> {}
+
+impl<S: Scalar, Sh: Shape> core::fmt::Debug for Factored<S, Sh> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Factored").field("key", &self.key).finish()
+    }
+}
+
+/// `key` with `x` mixed in (two 32-bit multiply-rotate lanes: cheap on a Cortex-M0).
+#[inline]
+fn mix(key: u64, x: u64) -> u64 {
+    let a = ((key as u32) ^ (x as u32))
+        .wrapping_mul(0x9E37_79B1)
+        .rotate_left(15);
+    let b = ((key >> 32) as u32 ^ (x >> 32) as u32 ^ a)
+        .wrapping_mul(0x85EB_CA77)
+        .rotate_left(13);
+    (u64::from(b) << 32) | u64::from(a)
+}
+
+/// The factor `LDLᵀ` of a banded matrix of band `b` ([`Shape::BAND`]): row `i` of `L` holds
+/// `L[i][j]` at `j + b − i` for the columns `j` from `i − b` to `i − 1` (slots before column
+/// 0 stay 0); `inv_d` the diagonal's inverses (0 for a held particle, whose row is out of
+/// the solve).
+struct Factor<S: Scalar, Sh: Shape> {
+    low: Sh::PerParticle<Sh::Band<S>>,
+    inv_d: Sh::PerParticle<S>,
+}
+
+impl<S: Scalar, Sh: Shape> Clone for Factor<S, Sh> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<S: Scalar, Sh: Shape> Copy for Factor<S, Sh> {}
+
+impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
+    /// Factors in place the matrix whose diagonal is `diag` and whose band is already in
+    /// `low`; rows with `free[i] == false` are skipped. A pivot that rounding left at or below
+    /// zero (`Q16` with tiny masses) is replaced by its row's diagonal.
+    fn factor(&mut self, diag: &[S], free: impl Fn(usize) -> bool) {
+        let zero = S::ZERO;
+        let band = Sh::BAND;
+        let low = Sh::flat_mut(&mut self.low);
+        let inv_d = Sh::flat_mut(&mut self.inv_d);
+        for i in 0..low.len() {
+            if !free(i) {
+                inv_d[i] = zero;
+                continue;
+            }
+            let first = i.saturating_sub(band);
+            // `L_ij · D_j` (the sum before the division), in row i's layout.
+            let mut scaled = Sh::band(zero);
+            let mut row = low[i];
+            let mut pivot = diag[i];
+            {
+                let (row, scaled) = (Sh::band_mut(&mut row), Sh::band_mut(&mut scaled));
+                let start = first + band - i;
+                for j in first..i {
+                    let at = j + band - i;
+                    // `Σ L_im D_m L_jm` over the columns `m` from `first` to `j − 1`.
+                    let earlier = &Sh::band_flat(&low[j])[first + band - j..];
+                    let dot = dot(&scaled[start..at], earlier);
+                    let s = row[at] - dot;
+                    let l = s * inv_d[j];
+                    scaled[at] = s;
+                    row[at] = l;
+                    pivot -= l * s;
+                }
+            }
+            low[i] = row;
+            if pivot <= zero {
+                pivot = diag[i];
+            }
+            inv_d[i] = if pivot > zero { S::ONE / pivot } else { zero };
+        }
+    }
+
+    /// Solves `LDLᵀ x = r` in place.
+    fn solve<P: Point<Scalar = S>>(&self, r: &mut [P]) {
+        let band = Sh::BAND;
+        let low = Sh::flat(&self.low);
+        let inv_d = Sh::flat(&self.inv_d);
+        for i in 0..r.len() {
+            let first = i.saturating_sub(band);
+            let row = &Sh::band_flat(&low[i])[first + band - i..];
+            let (before, rest) = r.split_at_mut(i);
+            let sum = before[first..]
+                .iter()
+                .zip(row)
+                .fold(rest[0], |sum, (&r, &l)| sum - r * l);
+            rest[0] = sum;
+        }
+        for (r, &inv) in r.iter_mut().zip(inv_d) {
+            *r = *r * inv;
+        }
+        for i in (0..r.len()).rev() {
+            let first = i.saturating_sub(band);
+            let row = &Sh::band_flat(&low[i])[first + band - i..];
+            let (before, rest) = r.split_at_mut(i);
+            let ri = rest[0];
+            for (r, &l) in before[first..].iter_mut().zip(row) {
+                *r -= ri * l;
+            }
+        }
+    }
+}
+
+/// Builds into `factor` the matrix `M + h² Σ k (ea − eb)(ea − eb)ᵀ` of `model`'s springs and
+/// factors it: `mass` the free particles' masses, `weight(k)` a spring's `h² k`. A spring is
+/// in the band when both its ends are free and at most [`Shape::BAND`] apart; any other
+/// spring puts its stiffness on its free ends' diagonals only.
+fn factor_springs<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+    factor: &mut Factor<P::Scalar, Sh>,
+    model: &Model<'_, P, Sh, T>,
+    mass: &[P::Scalar],
+    free: impl Fn(usize) -> bool,
+    weight: impl Fn(P::Scalar) -> P::Scalar,
+) {
+    let zero = P::Scalar::ZERO;
+    let mut diag = Sh::filled(zero);
+    let (d, low) = (Sh::flat_mut(&mut diag), Sh::flat_mut(&mut factor.low));
+    low.fill(Sh::band(zero));
+    d.copy_from_slice(mass);
+    model.topology.for_each_spring(|a, b, _, m| {
+        if a == b || m.stiffness <= zero {
+            return;
+        }
+        let k = weight(m.stiffness);
+        for end in [a, b] {
+            if free(end) {
+                d[end] += k;
+            }
+        }
+        if a.abs_diff(b) <= Sh::BAND && free(a) && free(b) {
+            let (i, j) = (a.max(b), a.min(b));
+            Sh::band_mut(&mut low[i])[j + Sh::BAND - i] -= k;
+        }
+    });
+    factor.factor(Sh::flat(&diag), free);
+}
+
+/// `Σ a_i b_i` over the shorter of the two, four products at a time (the factor's inner
+/// loop: about half its cost is loop overhead when summed one at a time).
+#[inline]
+fn dot<S: Scalar>(a: &[S], b: &[S]) -> S {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let (mut sums, mut chunks_b) = ([S::ZERO; 4], b.chunks_exact(4));
+    let mut chunks_a = a.chunks_exact(4);
+    for (a, b) in (&mut chunks_a).zip(&mut chunks_b) {
+        for k in 0..4 {
+            sums[k] += a[k] * b[k];
+        }
+    }
+    let tail = chunks_a
+        .remainder()
+        .iter()
+        .zip(chunks_b.remainder())
+        .fold(S::ZERO, |sum, (&a, &b)| sum + a * b);
+    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
+}
+
+impl DirectSprings {
+    fn solve_step<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        memory: &mut Factored<P::Scalar, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> bool {
+        let zero = P::Scalar::ZERO;
+        let (a, mut ok) = model.accelerations_at(state, forces, false);
+        let prev = state.pos;
+        let w = model.inv_mass();
+        let free = |i: usize| w[i] > zero;
+        // The prediction `y`: the free particles moved on by their velocities and the
+        // forces; a held one stays where its hand put it. The first iteration takes the
+        // springs' directions where the velocities alone would carry the particles: at rest
+        // under a steady load those are the directions of the balance, so that even one
+        // iteration keeps it (from `y`, every spring would lean by `h² a`).
+        let mut predicted = state.pos;
+        {
+            let (x, y) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut predicted));
+            let (v, a) = (Sh::flat(&state.vel), Sh::flat(&a));
+            for ((((x, y), &v), &a), &w) in x.iter_mut().zip(y).zip(v).zip(a).zip(w) {
+                if w > zero {
+                    *x += v * h;
+                    *y += (v + a * h) * h;
+                }
+            }
+        }
+        let y = Sh::flat(&predicted);
+        // `h² k` as `(k h) h`: in `Q16`, `h²` of a frame is below the format's resolution.
+        let weight = |k: P::Scalar| k * h * h;
+        let live = |a: usize, b: usize, k: P::Scalar| a != b && k > zero && (free(a) || free(b));
+        let mut mass = Sh::filled(zero);
+        for (m, &w) in Sh::flat_mut(&mut mass).iter_mut().zip(w) {
+            if w > zero {
+                *m = P::Scalar::ONE / w;
+            }
+        }
+        // The key of the matrix: the step's length and every inverse mass here, every live
+        // spring's ends and stiffness in the first iteration's pass.
+        let mut key = w
+            .iter()
+            .fold(mix(0, h.bits()), |key, &w| mix(key, w.bits()));
+        let inv_h = P::Scalar::ONE / h;
+        let fixed = P::Scalar::FIXED_POINT;
+        for iteration in 0..self.iterations.max(1) {
+            // Solved for the change of the positions so far: the right-hand side is
+            // `M (y − x)` and each spring's pull at `x` (a held end stays where it is).
+            let first = iteration == 0;
+            let mut rhs = Sh::filled(P::default());
+            let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
+            let r = Sh::flat_mut(&mut rhs);
+            for (((r, &y), &x), &m) in r.iter_mut().zip(y).zip(x).zip(Sh::flat(&mass)) {
+                *r = (y - x) * m;
+            }
+            model.topology.for_each_spring(|a, b, rest, m| {
+                if !live(a, b, m.stiffness) {
+                    return;
+                }
+                if first {
+                    key = mix(mix(key, ((a as u64) << 32) | b as u64), m.stiffness.bits());
+                }
+                // The spring's pull from the positions so far: stiffness towards its rest
+                // length, and its damping as an explicit force along it, at most what stops
+                // its ends' closing speed in one solve (`h² c` up to `h / (wa + wb)`).
+                let d = x[a] - x[b];
+                let l = d.length();
+                if l <= tiny_length::<P::Scalar>() {
+                    return;
+                }
+                let wsum = w[a] + w[b];
+                let ch = m.damping * h;
+                let c = if ch * wsum > P::Scalar::ONE {
+                    h / wsum
+                } else {
+                    ch * h
+                };
+                let inv = P::Scalar::ONE / l;
+                let closing = (v[a] - v[b]).dot(d) * inv;
+                let pull = d * ((weight(m.stiffness) * (rest - l) - c * closing) * inv);
+                if free(a) {
+                    r[a] += pull;
+                }
+                if free(b) {
+                    r[b] -= pull;
+                }
+            });
+            if fixed {
+                ok &= r.iter().all(|r| r.is_finite());
+            }
+            if first && memory.key != Some(key) {
+                factor_springs(&mut memory.factor, model, Sh::flat(&mass), free, weight);
+                memory.key = Some(key);
+            }
+            memory.factor.solve(r);
+            let x = Sh::flat_mut(&mut state.pos);
+            for (i, (x, &r)) in x.iter_mut().zip(Sh::flat(&rhs)).enumerate() {
+                if free(i) {
+                    *x += r;
+                }
+            }
+        }
+        let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
+        for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
+            if w > zero {
+                *v = (x - p) * inv_h;
+            }
+        }
+        ok
+    }
+}

@@ -1,0 +1,251 @@
+//! Time integrators: one type each, all behind the [`Integrator`] trait.
+//!
+//! A system names its integrator by type (`MassSpring<P, Shape, Topology, Verlet>`), so a
+//! device image links that one method and nothing else. [`AnyIntegrator`] is the run-time
+//! choice, for tools that compare methods or load them from a file; it links all eight.
+//!
+//! `ω` is the highest angular frequency of the spring network and `h` the substep.
+//! [`MassSpring::step`](crate::MassSpring::step) bounds `ω` from the springs and masses
+//! (Gershgorin: `ω² ≤ max_i w_i · Σ_{springs at i} k·(1 + [other end free])`, damping
+//! added the same way) and splits each frame into enough substeps that `ω·h` stays at the
+//! [`Accuracy`](crate::Accuracy)'s fraction of the method's limit.
+//!
+//! | integrator | `ω·h` limit | force evaluations per substep | energy | notes |
+//! |---|---|---|---|---|
+//! | [`ExplicitEuler`] | none: grows at any `h` without damping | 1 | gains | the textbook reference; substeps keep `ω·h ≤ 0.1` |
+//! | [`SymplecticEuler`] | 2 | 1 | bounded | the default: cheapest stable method |
+//! | [`Verlet`] | 2 | 2 | bounded | velocity Verlet, second order |
+//! | [`Rk4`] | 2√2 ≈ 2.83 | 4 | slowly loses | fourth order, the accurate choice |
+//! | [`ImplicitEuler`] | unconditionally stable | 1 + `iterations` Jacobian products | loses (damps high frequencies) | matrix-free conjugate gradient, no heap |
+//! | [`Xpbd`] | unconditionally stable | 1 per XPBD substep + one projection per spring | loses a little | springs as compliant distance constraints (Macklin et al. 2016, 2019) |
+//! | [`DirectChain`] | unconditionally stable, one substep a frame | 1 + `iterations` direct solves along the chain | loses where links stretch | a rope's links solved together, exactly: inextensible, or its springs at any stiffness |
+//! | [`DirectSprings`] | unconditionally stable, one substep a frame | 1 + `iterations` banded back-substitutions, one factorisation | loses (damps as backward Euler) | every spring of a rope or cloth solved together (projective dynamics): a sail at one solve a frame |
+//!
+//! Per spring, a force evaluation costs one square root, one division and about 20
+//! multiply-adds; per particle, about 6 operations.
+
+mod chain;
+mod direct;
+mod euler;
+mod implicit;
+mod model;
+mod rk4;
+mod verlet;
+mod xpbd;
+
+use core::fmt::Debug;
+
+pub use chain::DirectChain;
+pub use direct::{DirectSprings, Factored};
+pub use euler::{ExplicitEuler, SymplecticEuler};
+pub use implicit::ImplicitEuler;
+pub(crate) use implicit::solve_scale;
+pub(crate) use model::tiny_length;
+pub use model::{Model, State};
+pub use rk4::Rk4;
+pub use verlet::Verlet;
+pub use xpbd::Xpbd;
+
+use crate::physics::force::ForceField;
+use crate::physics::shape::Shape;
+use crate::physics::spring::Topology;
+use crate::{Point, Scalar};
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// A way to advance a mass-spring system by one substep. Implemented by the eight method
+/// types of this module and by [`AnyIntegrator`]; sealed, so that every method's stability
+/// limit is known to the substep planner.
+///
+/// ```
+/// use dunas::{MassSpring, Settings, Vec2, integrator::Verlet, shape::Line, spring::{Material, Springs}};
+/// let pos = [Vec2::new(0.0f32, 0.0), Vec2::new(1.0, 0.0)];
+/// let springs = Springs::<f32, 1>::chain(&pos, Material { stiffness: 100.0, damping: 0.1 })?;
+/// let settings = Settings { damping: 0.1, ..Settings::default() }.with_integrator(Verlet);
+/// let mut s: MassSpring<_, Line<2>, _, Verlet> = MassSpring::new(pos, [0.0, 1.0], springs, settings)?;
+/// s.step(1.0 / 60.0)?;
+/// # Ok::<(), dunas::Error>(())
+/// ```
+pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
+    /// What the method keeps inside its system from one step to the next: `()` for every
+    /// method but [`DirectSprings`] (and [`AnyIntegrator`]), which keeps its factor.
+    type Memory<S: Scalar, Sh: Shape>: Copy;
+
+    /// The memory of a system that has not stepped yet.
+    fn memory<S: Scalar, Sh: Shape>() -> Self::Memory<S, Sh>;
+
+    /// The largest stable `ω·h` for an undamped spring; `None` when the method is stable at
+    /// any step. Explicit Euler, unstable at every step, reports `1/9` so that the substep
+    /// planner keeps it at `ω·h ≤ 0.1` (it then gains at most 0.5% energy per substep).
+    fn stability_limit<S: Scalar>(&self) -> Option<S>;
+
+    /// Force evaluations per substep.
+    fn force_evaluations(&self) -> u32;
+
+    /// Advances `state` by `h` seconds under `model`'s forces and `forces`. Returns `false`
+    /// when a `Q16` force saturated on the way (reported in the step's `StepInfo`).
+    fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> bool;
+
+    /// [`substep`](Self::substep) with the system's `memory`, then `touch(state, (h, lag))`
+    /// (the contacts of a step that resolves them, `lag` seconds before the frame ends). A
+    /// method that splits its substep into shorter solves resolves the contacts after each
+    /// of them, with their own length and lag.
+    #[allow(clippy::too_many_arguments)]
+    fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        memory: &mut Self::Memory<P::Scalar, Sh>,
+        (h, lag): (P::Scalar, P::Scalar),
+        forces: &mut F,
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> bool {
+        let _ = memory;
+        let fits = self.substep(model, state, h, forces);
+        touch(state, (h, lag));
+        fits
+    }
+}
+
+/// A fresh memory of `method`'s kind (`()` for all but [`DirectSprings`]).
+fn memory_of<I: Integrator, S: Scalar, Sh: Shape>(_: &I) -> I::Memory<S, Sh> {
+    I::memory()
+}
+
+/// Splits a step of `h` seconds into `substeps` equal solves (0 counts as 1), each
+/// `solve(state, hs, forces)` followed by the contacts, `touch(state, (hs, lag))`. A held
+/// particle is at its hand's place at the end of the step, moving at the hand's velocity:
+/// before each solve it is put `left` solves short of there, so it moves through the solves.
+fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+    substeps: u8,
+    model: &Model<'_, P, Sh, T>,
+    state: &mut State<P, Sh>,
+    (h, lag): (P::Scalar, P::Scalar),
+    forces: &mut F,
+    touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> bool,
+) -> bool {
+    let n = substeps.max(1);
+    let hs = h / P::Scalar::from_i16(i16::from(n));
+    let end = state.pos;
+    let mut ok = true;
+    for left in (0..n).rev() {
+        let behind = hs * P::Scalar::from_i16(i16::from(left));
+        let w = model.inv_mass();
+        let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+        for (((x, &end), &v), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(v).zip(w) {
+            if w <= P::Scalar::ZERO {
+                *x = end - v * behind;
+            }
+        }
+        ok &= solve(state, hs, forces);
+        touch(state, (hs, lag + behind));
+    }
+    ok
+}
+
+/// Any of the eight methods, chosen at run time: for comparing them, or reading one from a
+/// file. Links every method's code; a game that knows its method names the type instead.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AnyIntegrator {
+    /// [`ExplicitEuler`].
+    ExplicitEuler,
+    /// [`SymplecticEuler`].
+    #[default]
+    SymplecticEuler,
+    /// [`Verlet`].
+    Verlet,
+    /// [`Rk4`].
+    Rk4,
+    /// [`ImplicitEuler`].
+    ImplicitEuler(ImplicitEuler),
+    /// [`Xpbd`].
+    Xpbd(Xpbd),
+    /// [`DirectChain`].
+    DirectChain(DirectChain),
+    /// [`DirectSprings`].
+    DirectSprings(DirectSprings),
+}
+
+impl sealed::Sealed for AnyIntegrator {}
+
+/// Runs `$body` with `$m` bound to the method `$any` names.
+macro_rules! with_method {
+    ($any:expr, $m:ident => $body:expr) => {
+        match $any {
+            AnyIntegrator::ExplicitEuler => {
+                let $m = ExplicitEuler;
+                $body
+            }
+            AnyIntegrator::SymplecticEuler => {
+                let $m = SymplecticEuler;
+                $body
+            }
+            AnyIntegrator::Verlet => {
+                let $m = Verlet;
+                $body
+            }
+            AnyIntegrator::Rk4 => {
+                let $m = Rk4;
+                $body
+            }
+            AnyIntegrator::ImplicitEuler($m) => $body,
+            AnyIntegrator::Xpbd($m) => $body,
+            AnyIntegrator::DirectChain($m) => $body,
+            AnyIntegrator::DirectSprings($m) => $body,
+        }
+    };
+}
+
+impl Integrator for AnyIntegrator {
+    /// [`DirectSprings`]'s, whichever method runs.
+    type Memory<S: Scalar, Sh: Shape> = <DirectSprings as Integrator>::Memory<S, Sh>;
+
+    fn memory<S: Scalar, Sh: Shape>() -> Self::Memory<S, Sh> {
+        DirectSprings::memory()
+    }
+
+    fn stability_limit<S: Scalar>(&self) -> Option<S> {
+        with_method!(*self, m => m.stability_limit())
+    }
+
+    fn force_evaluations(&self) -> u32 {
+        with_method!(*self, m => m.force_evaluations())
+    }
+
+    fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> bool {
+        with_method!(*self, m => m.substep(model, state, h, forces))
+    }
+
+    fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        memory: &mut Self::Memory<P::Scalar, Sh>,
+        times: (P::Scalar, P::Scalar),
+        forces: &mut F,
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> bool {
+        if let AnyIntegrator::DirectSprings(m) = *self {
+            return m.substep_touching(model, state, memory, times, forces, touch);
+        }
+        with_method!(*self, m => {
+            let own = &mut memory_of::<_, P::Scalar, Sh>(&m);
+            m.substep_touching(model, state, own, times, forces, touch)
+        })
+    }
+}

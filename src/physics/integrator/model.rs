@@ -1,0 +1,148 @@
+//! What an integrator sees: the moving state, and the forces at any state.
+
+use crate::physics::force::{Accelerations, Bodies, ForceField};
+use crate::physics::shape::Shape;
+use crate::physics::spring::{Material, Topology};
+use crate::{Point, Scalar};
+
+/// Positions and velocities of every particle: what an integrator advances.
+pub struct State<P: Point, Sh: Shape> {
+    pub(crate) pos: Sh::PerParticle<P>,
+    pub(crate) vel: Sh::PerParticle<P>,
+}
+
+impl<P: Point, Sh: Shape> Clone for State<P, Sh> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<P: Point, Sh: Shape> Copy for State<P, Sh> {}
+
+/// What stays fixed during a substep: masses, springs, gravity, damping and the clock.
+pub struct Model<'a, P: Point, Sh: Shape, T> {
+    pub(crate) inv_mass: &'a Sh::PerParticle<P::Scalar>,
+    pub(crate) topology: &'a T,
+    pub(crate) gravity: P,
+    pub(crate) damping: P::Scalar,
+    pub(crate) time: P::Scalar,
+}
+
+/// Springs shorter than this have no direction: 16 units of rounding.
+#[inline]
+pub(crate) fn tiny_length<S: Scalar>() -> S {
+    S::EPSILON * S::from_i16(16)
+}
+
+/// Force on particle `a` from a spring to `b` (the opposite acts on `b`), or `None` when the
+/// two are closer than the format can resolve a direction for. The second value is `false`
+/// when the force saturated (`Q16` only; a float overflow is caught as divergence).
+#[inline]
+fn spring_force<P: Point>(
+    xa: P,
+    xb: P,
+    va: P,
+    vb: P,
+    rest: P::Scalar,
+    m: Material<P::Scalar>,
+) -> Option<(P, bool)> {
+    let d = xb - xa;
+    let l = d.length();
+    if l <= tiny_length::<P::Scalar>() {
+        return None;
+    }
+    let inv = P::Scalar::ONE / l;
+    // f/l along d: one vector scale instead of normalising first.
+    let f = m.stiffness * (l - rest) + m.damping * (vb - va).dot(d) * inv;
+    Some((d * (f * inv), f.is_finite()))
+}
+
+impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
+    /// Inverse masses, in flat order.
+    #[inline]
+    pub(crate) fn inv_mass(&self) -> &[P::Scalar] {
+        Sh::flat(self.inv_mass)
+    }
+
+    /// Accelerations at state `(x, v)`: gravity, damping, springs (unless `springs` is
+    /// false) and the force fields. Returns `false` when a `Q16` force or acceleration
+    /// saturated.
+    pub(crate) fn accelerations<F: ForceField<P>>(
+        &self,
+        x: &[P],
+        v: &[P],
+        forces: &mut F,
+        acc: &mut [P],
+        springs: bool,
+    ) -> bool {
+        // In Q16 a saturated value is not sticky (MAX - 1 is finite again), so every
+        // product and sum is checked where it is made; floats need none of this (an
+        // overflow stays infinite and is caught as divergence).
+        let fixed = P::Scalar::FIXED_POINT;
+        let w = self.inv_mass();
+        let mut ok = true;
+        // Springs sum forces; each particle's sum is then scaled by its inverse mass once
+        // (one multiplication per particle instead of two per spring).
+        acc.fill(P::default());
+        if springs {
+            self.topology.for_each_spring(|a, b, rest, m| {
+                if let Some((f, fine)) = spring_force(x[a], x[b], v[a], v[b], rest, m) {
+                    acc[a] += f;
+                    acc[b] -= f;
+                    if fixed {
+                        ok &= fine & f.is_finite() & acc[a].is_finite() & acc[b].is_finite();
+                    }
+                }
+            });
+        }
+        for i in 0..acc.len() {
+            // Pinned particles do not accelerate: skip their multiplications where they are
+            // costly (fixed point); floats keep a branch-free loop.
+            if fixed && w[i] <= P::Scalar::ZERO {
+                acc[i] = P::default();
+                continue;
+            }
+            let force = acc[i] * w[i];
+            let drag = v[i] * self.damping;
+            acc[i] = if w[i] > P::Scalar::ZERO {
+                force + self.gravity - drag
+            } else {
+                P::default()
+            };
+            if fixed {
+                ok &= force.is_finite() & drag.is_finite() & acc[i].is_finite();
+            }
+        }
+        let bodies = Bodies {
+            pos: x,
+            vel: v,
+            inv_mass: w,
+            columns: Sh::COLUMNS,
+        };
+        let mut out = Accelerations {
+            acc,
+            inv_mass: w,
+            saturated: false,
+        };
+        forces.apply(self.time, &bodies, &mut out);
+        ok && !out.saturated
+    }
+
+    /// Accelerations at `state`, in the layout's own array.
+    pub(crate) fn accelerations_at<F: ForceField<P>>(
+        &self,
+        state: &State<P, Sh>,
+        forces: &mut F,
+        springs: bool,
+    ) -> (Sh::PerParticle<P>, bool) {
+        let mut a = Sh::filled(P::default());
+        let ok = self.accelerations(
+            Sh::flat(&state.pos),
+            Sh::flat(&state.vel),
+            forces,
+            Sh::flat_mut(&mut a),
+            springs,
+        );
+        (a, ok)
+    }
+}

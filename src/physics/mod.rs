@@ -1,0 +1,13 @@
+//! The particle systems: [`MassSpring`](crate::MassSpring), its layouts, springs, forces,
+//! settings and integrators, the substeps a frame takes and the fixed time step. Uses
+//! numbers, geometry and curves; knows nothing of contacts or of the game objects.
+
+pub mod body;
+pub mod force;
+pub mod integrator;
+pub(crate) mod settings;
+pub mod shape;
+pub mod spring;
+pub(crate) mod substeps;
+pub mod system;
+pub mod timestep;
