@@ -5,6 +5,7 @@
 pub mod curve;
 pub mod flatten;
 pub mod lod;
+pub(crate) mod natural;
 pub mod patch;
 pub mod sampler;
 pub mod smooth;

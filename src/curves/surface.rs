@@ -30,7 +30,7 @@
 //! # Ok::<(), dunas::Error>(())
 //! ```
 
-use crate::curves::smooth::natural_controls;
+use crate::curves::natural::natural_controls;
 use crate::error::invalid;
 use crate::{Error, Point, Scalar, Smoothing, Vec3};
 

@@ -4,6 +4,7 @@
 
 pub mod body;
 pub mod force;
+pub(crate) mod grid_springs;
 pub mod integrator;
 pub(crate) mod settings;
 pub mod shape;
