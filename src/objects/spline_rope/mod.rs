@@ -37,7 +37,7 @@
 //! rope's first three lateral modes are within 0.01%, 0.01% and 0.02% of `(j_n / 2)·√(g/L)`
 //! (measured the same way, a chain of 8 particles is 0.6%, 6.8% and 13.4% off, one of 30
 //! 0.04%, 0.46% and 1.8%; linearized, a chain needs 289 particles to match mode 3:
-//! `cargo run --release --example evaluate`, section (h)). Between two pins, 8 control
+//! `cargo run --release -p dunas-evaluate`, section (h)). Between two pins, 8 control
 //! points sag within 0.1% of the catenary (3.2% short without the projection).
 //!
 //! Stability: the substep bound holds in every shape (the tension's stiffness never passes

@@ -678,7 +678,7 @@ pub(super) struct History<P: Point, const K: usize> {
 ///   (`ds` a span, `ρ` the mass per length; a 10 m steel cable at 60 Hz is about 2·10³);
 ///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.02 px from `f64`
 ///   after 2 s). On a soft rope it costs several explicit frames
-///   (`cargo bench --bench physics -- spline_rope`); the explicit cost grows with `√EA`,
+///   (`cargo bench -p dunas-evaluate --bench physics -- spline_rope`); the explicit cost grows with `√EA`,
 ///   this one does not. No damping floor is needed.
 /// - [`Bdf2`]: the same solve on BDF2's shifted start, second order: a rope released level
 ///   loses 6% to 8% of the fall's energy in its first second (`EA` from 2·10³ to 10⁷ N on

@@ -2,9 +2,7 @@
 //! the docs say it works, outside them where the docs say it fails.
 #![cfg(any(feature = "std", feature = "libm"))]
 
-mod common;
-
-use common::{ExactCurve, Rng};
+use crate::common::{self, ExactCurve, Rng};
 use dunas::sampler::{BernsteinTable, DeCasteljau, ForwardDiff, Horner, Sampler, Subdivide};
 use dunas::{Point, Scalar, Vec2};
 

@@ -6,9 +6,7 @@ use dunas::integrator::{ImplicitEuler, SymplecticEuler};
 use dunas::prelude::*;
 use dunas::spline_rope::{Bdf2, SplineRope, SplineStepper};
 
-mod common;
-
-use common::{
+use crate::common::{
     J0_ZEROS, cantilever_first_mode, cantilever_sag, cantilever_sag_exact, catenary_sag, j0,
     released_spline_rope, spline_rope_sag,
 };

@@ -3,10 +3,9 @@
 //! deliberate change, and review the diff.
 #![cfg(feature = "std")]
 
-#[path = "../examples/common/rope_scene.rs"]
-mod rope_scene;
-
 use std::path::Path;
+
+use crate::rope_scene;
 
 use dunas::{Point, Vec2};
 

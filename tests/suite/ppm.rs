@@ -1,9 +1,6 @@
 //! The PPM writer of the host examples: header, size and known pixels of a known drawing.
 
-#[path = "../examples/common/raster.rs"]
-mod raster;
-
-use raster::Image;
+use crate::raster::Image;
 
 #[test]
 fn ppm_has_the_p6_header_the_size_and_the_drawn_pixels() {

@@ -7,8 +7,8 @@ use std::path::Path;
 use dunas::spring::Topology;
 use dunas::xml::{self, XmlError};
 
-const SCENE: &str = include_str!("../examples/data/cloth_scene.xml");
-const PHYSICS: &str = include_str!("../examples/data/cloth_physics.xml");
+const SCENE: &str = include_str!("../../examples/data/cloth_scene.xml");
+const PHYSICS: &str = include_str!("../../examples/data/cloth_physics.xml");
 
 fn build(scene: &str, physics: &str) -> Result<usize, XmlError> {
     let s = xml::parse_scene(scene, "scene.xml")?;

@@ -3,11 +3,10 @@
 //! each integrator's documented limit.
 #![cfg(any(feature = "std", feature = "libm"))]
 
-mod common;
-
+use crate::common;
 use std::f64::consts::PI;
 
-use common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period, up_crossings};
+use crate::common::{catenary_sag_error, chain_between_pins, jacobi_eigen, period, up_crossings};
 
 #[cfg(feature = "fixed")]
 use dunas::Q16;

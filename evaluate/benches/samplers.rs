@@ -1,7 +1,7 @@
 //! Cost per point of every sampler × number format × degree (3, 7) × sample count (64,
 //! 1024), and of patch grids.
 //!
-//! Run: `cargo bench --all-features --bench samplers`; criterion reports time per sample
+//! Run: `cargo bench -p dunas-evaluate --bench samplers`; criterion reports time per sample
 //! point (throughput "elements"). Control points are at the 10⁴ px scale (10² for `Q16`,
 //! whose range ends at 32768).
 
@@ -62,7 +62,6 @@ fn bench_all<S: Scalar>(c: &mut Criterion, format: &str, scale: f64) {
 fn samplers(c: &mut Criterion) {
     bench_all::<f32>(c, "f32", 1e4);
     bench_all::<f64>(c, "f64", 1e4);
-    #[cfg(feature = "fixed")]
     bench_all::<dunas::Q16>(c, "q16", 1e2);
 }
 

@@ -2,9 +2,8 @@
 //! within the tolerance of the polyline, for random cubics at several tolerances.
 #![cfg(any(feature = "std", feature = "libm"))]
 
-mod common;
-
-use common::Rng;
+use crate::common;
+use crate::common::Rng;
 use dunas::{Bezier, Error, Vec2, flatten};
 
 /// Largest distance from 2001 points of `c` to the polyline `poly`.

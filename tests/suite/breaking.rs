@@ -351,8 +351,7 @@ fn positions_stay_finite_through_random_cuts_and_breaks() {
     assert!(cuts > 5000 && snaps > 300, "{cuts} cuts, {snaps} snaps");
 }
 
-#[path = "../examples/common/catapult.rs"]
-mod catapult;
+use crate::catapult;
 
 /// The catapult example's penguin lands where the closed-form arc from its release point and
 /// velocity lands (the flight is stepped frame by frame, the landing found on the last

@@ -2,8 +2,7 @@
 //! calibration, the thesis's other topologies, and the game-loop clock.
 #![cfg(any(feature = "std", feature = "libm"))]
 
-mod common;
-
+use crate::common;
 use dunas::Settings;
 use dunas::integrator::{Integrator, Rk4};
 use dunas::smooth::Smoothing;

@@ -3,8 +3,7 @@
 //! and a restitution that adds no energy.
 #![cfg(any(feature = "std", feature = "libm"))]
 
-mod common;
-
+use crate::common;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Push, Touch};
 use dunas::prelude::*;

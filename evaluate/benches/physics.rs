@@ -2,7 +2,7 @@
 //! 20×20, the cost of a whole rope frame (step + 64-point curve), contacts against 4
 //! colliders, the spline rope's substep, curve and frame, and the state sizes.
 //!
-//! Run: `cargo bench --bench physics`. The sizes are printed first.
+//! Run: `cargo bench -p dunas-evaluate --bench physics`. The sizes are printed first.
 
 use std::hint::black_box;
 use std::time::Duration;
