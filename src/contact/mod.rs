@@ -140,7 +140,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rope or cloth and a body of that mass, whose velocity and place take each push at
     /// once, in the same substep: with restitution 0 the pair never gains energy, whatever
     /// the mass ratio (a ball 0.5 to 30 times a taut rope's mass, dropped on it at 60 Hz,
-    /// rebounds lower than it fell from: `tests/contacts.rs`). A collider without a mass is
+    /// rebounds lower than it fell from: `tests/suite/contacts.rs`). A collider without a mass is
     /// kinematic (infinitely heavy): its `impulse` is still reported, its `shift` stays 0.
     ///
     /// ```

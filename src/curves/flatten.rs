@@ -212,7 +212,7 @@ pub fn segments<S: Scalar>(curve: &Bezier<Vec2<S>, 4>, tol: S) -> Result<usize, 
 
 /// Writes the flattened `curve` into `out` (its two ends exactly, and the points between)
 /// and returns the count, [`segments`]` + 1`. Every point of the curve is within `tol` of
-/// the polyline (checked at 2001 points of random cubics in `tests/flatten.rs`). Cost: two
+/// the polyline (checked at 2001 points of random cubics in `tests/suite/flatten.rs`). Cost: two
 /// square roots a point, and a split into quadratics.
 ///
 /// # Errors

@@ -19,7 +19,7 @@
 //! `f32` up to degree 3 at 100 px and 1024 samples, in `Q16` nowhere. Only [`Subdivide`]
 //! stays within 0.01 px in `Q16` at 10⁴ px.
 //!
-//! Errors are checked against an exact (integer) reference in the tests of `tests/samplers.rs`.
+//! Errors are checked against an exact (integer) reference in the tests of `tests/suite/samplers.rs`.
 //!
 //! ```
 //! use dunas::{Bezier, Vec2, sampler::{Sampler, DeCasteljau}};

@@ -28,7 +28,7 @@ use crate::{Error, Point, Scalar, Settings};
 /// A rope at rest looks at rest: in `f32`, a settled 1 m rope of 30 particles moves its
 /// particles by at most 2 µm over 2 s (measured 0.5 µm); the speeds left, up to 1e-3 m/s
 /// (measured 5e-4), are rounding noise in the stiffest spring mode, too fast and too small
-/// to see (`tests/rope.rs`, `a_resting_f32_rope_stays_still`).
+/// to see (`tests/suite/rope.rs`, `a_resting_f32_rope_stays_still`).
 ///
 /// State size in `f32` 2D: `20·N + 16·CAP + 52` bytes; 340 for 8 particles.
 ///

@@ -12,7 +12,7 @@ use crate::{Error, Point, Scalar};
 /// whatever the level.
 ///
 /// The swing of total energy of a released, undamped 8-particle rope over 3 s, relative to
-/// the energy its fall releases (`tests/rope.rs`, `accuracy_levels_bound_the_energy_swing`;
+/// the energy its fall releases (`tests/suite/rope.rs`, `accuracy_levels_bound_the_energy_swing`;
 /// charted against cost by `cargo run --release -p dunas-evaluate`):
 ///
 /// | level | `ω·h` (symplectic Euler, Verlet) | substeps | symplectic Euler | Verlet | any start, 10 s: symplectic Euler | Verlet |

@@ -33,7 +33,7 @@
 //! backward Euler or BDF2 by Newton's method on the step's incremental potential, one step a
 //! frame at any stiffness (see [`SplineStepper`]).
 //!
-//! Accuracy, against the continuum (`tests/spline_rope.rs`): with 8 control points a hanging
+//! Accuracy, against the continuum (`tests/suite/spline_rope.rs`): with 8 control points a hanging
 //! rope's first three lateral modes are within 0.01%, 0.01% and 0.02% of `(j_n / 2)·√(g/L)`
 //! (measured the same way, a chain of 8 particles is 0.6%, 6.8% and 13.4% off, one of 30
 //! 0.04%, 0.46% and 1.8%; linearized, a chain needs 289 particles to match mode 3:
@@ -65,7 +65,7 @@
 //! past the format's range is held: the `mcu_spline` rope 30 times lighter or 3 times
 //! heavier, or 2 to 7 times larger (up to 490 px under 1 400 px/s², its end whipping past
 //! 100 000 px/s² with 16 control points), stays within 1% of its length from `f64` for
-//! 2 s with 8, 12 and 16 control points (`tests/spline_rope.rs`; measured at most 0.57%).
+//! 2 s with 8, 12 and 16 control points (`tests/suite/spline_rope.rs`; measured at most 0.57%).
 //! What `Q16` clamps and reports is in [`SplineRope::step`].
 //!
 //! ```
@@ -133,7 +133,7 @@ const GAUSS: [(f64, f64); 4] = [
 ];
 
 /// Stretch points a span: [`STRETCH_GAUSS`]'s. (Two, exact to degree 3, would save a third
-/// of a substep's products, but `tests/spline_rope.rs` then measures mode 3 of a hanging
+/// of a substep's products, but `tests/suite/spline_rope.rs` then measures mode 3 of a hanging
 /// rope of 8 control points 1.2% off the continuum, against 0.015% with three.)
 const POINTS: usize = 3;
 
@@ -558,7 +558,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
 
     /// Sets the bending stiffness `EI` (force · length²): the energy `½ ∫ EI |x''|² ds`, a
     /// constant banded matrix on the control points (a cable, a hose, a wire). A hanging
-    /// end bends like a cantilever (`tests/spline_rope.rs`: tip deflection within 1% of
+    /// end bends like a cantilever (`tests/suite/spline_rope.rs`: tip deflection within 1% of
     /// `ρ·g·L⁴ / (8·EI)`). The substep bound is found again (at most `K` Lanczos
     /// steps, `O(K²)`): a stiff `EI` on short spans asks for many substeps, `ω² ∝ EI / (ρ·ds⁴)`;
     /// the implicit stepper takes it in one. The forces are formed from the control points'

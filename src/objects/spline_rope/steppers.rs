@@ -164,7 +164,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
 
     /// Whether BDF2 takes a step of `h`: within the format's precision, `h²·ω² ≤ 2²²` (the
     /// stiffest tested to hold its energy: a 1 m, 1 kg rope of 8 control points at
-    /// `EA = 10⁷ N`, `h²·ω² ≈ 3·10⁶`, `tests/spline_rope.rs`), and never in `Q16`, whose one
+    /// `EA = 10⁷ N`, `h²·ω² ≈ 3·10⁶`, `tests/suite/spline_rope.rs`), and never in `Q16`, whose one
     /// linearized Newton step lets BDF2 drift from `f64`.
     pub(super) fn bdf2_holds(&self, h: P::Scalar) -> bool {
         !P::Scalar::FIXED_POINT
@@ -674,7 +674,7 @@ pub(super) struct History<P: Point, const K: usize> {
 ///   a rope moves slower than it should instead of blowing up. It damps what a frame cannot
 ///   resolve, the swing too: a mode of `ω` loses `1 − 1/(1 + (ω·h)²)` of its energy a
 ///   step, and a rope released level loses 37% to 43% of the fall's energy in the first
-///   second at 60 Hz. Range (`tests/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵`
+///   second at 60 Hz. Range (`tests/suite/spline_rope.rs`): `f64` to `EA·h²/(ρ·ds²) ≈ 7·10⁵`
 ///   (`ds` a span, `ρ` the mass per length; a 10 m steel cable at 60 Hz is about 2·10³);
 ///   `f32` to `7·10⁴`; `Q16` for ropes in pixels (a 70 px rope ends 0.02 px from `f64`
 ///   after 2 s). On a soft rope it costs several explicit frames

@@ -27,7 +27,7 @@ use crate::{Point, Scalar};
 /// the spacing is; one of a third holds the rope, `direct_chain_rests_on_a_peg`); for thin
 /// pegs, use [`SymplecticEuler`](super::SymplecticEuler).
 ///
-/// Measured (`tests/physics.rs`, `direct_chain_*`), with the defaults (4 solves of up to 4
+/// Measured (`tests/suite/physics.rs`, `direct_chain_*`), with the defaults (4 solves of up to 4
 /// iterations a 60 Hz frame), one substep a frame at any stiffness:
 /// - the catapult's rope (1.6 m, 0.4 kg, 8 particles) whirled with its 3 kg penguin: links
 ///   within 0.01% of their length, the drawn curve within 0.5% (0.21% measured;

@@ -35,7 +35,7 @@ use crate::{Point, Scalar};
 /// explicit force clamped to what stops its ends' closing speed in one solve
 /// (`c ≤ 1 / (h (wa + wb))`).
 ///
-/// Measured (`tests/physics.rs`, `direct_springs_*`; `docs/summary.md`, section (j)):
+/// Measured (`tests/suite/physics.rs`, `direct_springs_*`; `docs/summary.md`, section (j)):
 /// - the boat scene's sail in a steady wind rests within 0.04 mm of the balance symplectic
 ///   Euler reaches in `f64` (1.6 mm in `Q16`); a hanging rope sags as statics says at every
 ///   stiffness from 10² to 10⁸ N/m, one substep a frame;

@@ -13,7 +13,7 @@ use crate::{Point, Scalar};
 /// Its one linearization does not follow a very stiff spring as it turns: a 1 m, 1 kg rope
 /// of 8 particles released level at 60 Hz never rises above its starting energy up to
 /// `k = 10⁶ N/m`, but at `10⁷` its energy rises for a while to 3 times what the fall
-/// releases (at `10⁸`, 14 times) before the step's damping settles it (`tests/physics.rs`).
+/// releases (at `10⁸`, 14 times) before the step's damping settles it (`tests/suite/physics.rs`).
 /// A [`SplineRope`](crate::objects::spline_rope::SplineRope) solves its step fully instead (Newton's
 /// method, `iterations` per Newton step) and, in `f32` and `f64`, never gains energy: for
 /// stiff cables, see [`SplineStepper`](crate::objects::spline_rope::SplineStepper).

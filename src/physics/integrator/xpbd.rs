@@ -14,7 +14,7 @@ use crate::{Point, Scalar};
 /// softer than its springs and stretches more under gravity than the force-based methods on
 /// the same springs. The excess falls as `1/substeps²`; to match them, raise `substeps`.
 /// A 1 m, 1 kg rope of 30 particles with axial stiffness 1000 N, hanging at rest, stretches
-/// by (`tests/physics.rs`, `xpbd_stretch_converges_to_the_springs_as_substeps_grow`):
+/// by (`tests/suite/physics.rs`, `xpbd_stretch_converges_to_the_springs_as_substeps_grow`):
 ///
 /// | substeps | 4 | 16 | 64 | force-based methods | continuum `m·g/(2·EA)` |
 /// |---|---|---|---|---|---|
