@@ -1,11 +1,15 @@
-//! A closed loop: a ring of 12 particles on loop and bending springs, hung from one particle
-//! like a hoop on a nail, pushed by a gust, and drawn as a seamless closed B-spline.
+//! Closed loops: a ring of 12 particles on loop and bending springs, hung from one particle
+//! like a hoop on a nail, pushed by a gust, and drawn as a seamless closed B-spline (`#`);
+//! beside it a jelly, a ring of 10 particles blown up by the gas inside it
+//! (`force::Pressure`), dropped on the floor, squashing and bouncing (`*`).
 //!
 //! Run: `cargo run --release --example loop` (prints three frames as text).
 
 use dunas::Settings;
 use dunas::ascii::{Canvas, View};
-use dunas::force::Wind;
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
+use dunas::force::{Pressure, Wind};
 use dunas::smooth::{Smoothed, Smoothing};
 use dunas::spring::{Material, Springs};
 use dunas::{Rope, Vec2};
@@ -45,8 +49,32 @@ fn main() {
     wind.gust = Vec2::new(600.0, 0.0);
     wind.gust_start = 0.2;
     wind.gust_length = 0.8;
+    // The jelly: 10 particles on a ring of radius 4, soft springs, gas at 120 units of
+    // pressure, dropped from above the floor at y = -34.
+    let blob: [Vec2<f32>; 10] = core::array::from_fn(|i| {
+        let a = std::f32::consts::TAU * i as f32 / 10.0;
+        Vec2::new(14.0 + 4.0 * a.cos(), -20.0 + 4.0 * a.sin())
+    });
+    let blob_springs = Springs::<f32, 10>::closed_loop(
+        &blob,
+        Material {
+            stiffness: 300.0,
+            damping: 1.0,
+        },
+    )
+    .expect("valid");
+    let mut jelly = Rope::from_parts(blob, [1.0; 10], blob_springs, settings).expect("valid jelly");
+    let mut gas = Pressure::at(120.0, Pressure::area(&blob)).expect("valid gas");
+    let floor = [Collider::half_space(Vec2::new(0.0, -34.0), Vec2::new(0.0, 1.0)).expect("valid")];
+    let on_floor = Contacts::new(&floor, 0.5, Touch::Particles).expect("valid");
     let mut curve = [Vec2::default(); 61];
+    let mut blob_curve = [Vec2::default(); 51];
     for (frame, until) in [0.3f32, 0.8, 1.6].into_iter().enumerate() {
+        while jelly.time() < until - 1e-3 {
+            let _ = jelly
+                .step_touching_particles(1.0 / 60.0, &mut gas, &on_floor)
+                .expect("the jelly stays stable");
+        }
         while hoop.time() < until - 1e-3 {
             let info = hoop
                 .step_with(1.0 / 60.0, &mut wind)
@@ -66,7 +94,18 @@ fn main() {
         let view = View::new(Vec2::new(-20.0, 2.0), 1.0, 2.0).expect("positive cells");
         canvas.polyline(&view, &curve[..n], b'#');
         canvas.points(&view, hoop.positions(), b'o');
-        println!("frame {} at t = {:.1} s", frame + 1, hoop.time());
+        let m = Smoothed::closed(Smoothing::BSpline, jelly.position_array())
+            .and_then(|c| c.sample(&mut blob_curve))
+            .expect("the jelly stays in range");
+        canvas.polyline(&view, &blob_curve[..m], b'*');
+        canvas.points(&view, jelly.positions(), b'o');
+        println!(
+            "frame {} at t = {:.1} s (the jelly's area {:.0} units², from {:.0})",
+            frame + 1,
+            hoop.time(),
+            Pressure::area(jelly.positions()),
+            Pressure::area(&blob)
+        );
         for row in canvas.rows() {
             println!("{}", String::from_utf8_lossy(row).trim_end());
         }

@@ -41,6 +41,8 @@ pub struct Report {
     pub other_frame_instructions: Option<u32>,
     /// The rope's largest stretch over the run, in thousandths, where the example measures it.
     pub stretch_permille: Option<u32>,
+    /// A soft body's area at the end, in thousandths of its area at the start.
+    pub area_permille: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -204,6 +206,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         pin_instructions: None,
         other_frame_instructions: None,
         stretch_permille: None,
+        area_permille: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -462,6 +465,9 @@ mod board {
                 if let Some(n) = r.stretch_permille {
                     put_number(b"stretch_permille", n, false);
                 }
+                if let Some(n) = r.area_permille {
+                    put_number(b"area_permille", n, false);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -537,6 +543,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.stretch_permille {
                 println!("stretch_permille={n}");
+            }
+            if let Some(n) = r.area_permille {
+                println!("area_permille={n}");
             }
         }
         Err(e) => {

@@ -6,6 +6,7 @@ pub mod body;
 pub mod force;
 pub(crate) mod grid_springs;
 pub mod integrator;
+pub(crate) mod pressure;
 pub(crate) mod settings;
 pub mod shape;
 pub mod spring;

@@ -21,6 +21,7 @@ mod fuzz;
 mod layers;
 mod physics;
 mod ppm;
+mod pressure;
 mod properties;
 mod regressions;
 mod rope;

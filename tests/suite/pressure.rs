@@ -1,0 +1,172 @@
+//! The gas in a closed loop (`force::Pressure`) against closed forms: a pressurised ring at
+//! rest where its springs balance its gas, a rolling jelly that keeps its area, and bad input.
+#![cfg(any(feature = "std", feature = "libm"))]
+
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
+use dunas::force::Pressure;
+use dunas::spring::{Material, Springs};
+use dunas::{Error, Point, Rope, Settings, Vec2};
+
+const N: usize = 16;
+
+/// A ring of `N` particles of `radius` around `centre`, 1 kg in all, its loop springs of `k`
+/// relaxed at that radius.
+fn ring(
+    centre: Vec2<f64>,
+    radius: f64,
+    k: f64,
+    settings: Settings<Vec2<f64>>,
+) -> Rope<Vec2<f64>, N> {
+    let points: [Vec2<f64>; N] = core::array::from_fn(|i| {
+        let a = std::f64::consts::TAU * i as f64 / N as f64;
+        centre + Vec2::new(radius * a.cos(), radius * a.sin())
+    });
+    let springs = Springs::closed_loop(
+        &points,
+        Material {
+            stiffness: k,
+            damping: 0.5,
+        },
+    )
+    .unwrap();
+    Rope::from_parts(points, [N as f64; N], springs, settings).unwrap()
+}
+
+/// The radius at which a regular `N`-gon of springs `k` (rest side `rest`) balances the gas
+/// `amount`: the edges' push `p·s·cos(π/N)` against the springs' pull `2·k·(s − rest)·sin(π/N)`,
+/// `s = 2r·sin(π/N)`, `p = amount / area`, `area = (N/2)·r²·sin(2π/N)`; by bisection.
+fn balanced_radius(amount: f64, k: f64, rest: f64) -> f64 {
+    let t = std::f64::consts::PI / N as f64;
+    let net = |r: f64| {
+        let s = 2.0 * r * t.sin();
+        let area = N as f64 / 2.0 * r * r * (2.0 * t).sin();
+        amount / area * s * t.cos() - 2.0 * k * (s - rest) * t.sin()
+    };
+    let (mut lo, mut hi) = (rest / (2.0 * t.sin()), 100.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if net(mid) > 0.0 { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Mean distance of the particles from their centroid.
+fn mean_radius(x: &[Vec2<f64>]) -> f64 {
+    let c = x.iter().fold(Vec2::new(0.0, 0.0), |s, &p| s + p) * (1.0 / x.len() as f64);
+    x.iter().map(|p| p.distance(c)).sum::<f64>() / x.len() as f64
+}
+
+/// The ring comes to rest within 1% of the radius where its springs balance its gas.
+#[test]
+fn a_pressurised_ring_rests_at_its_closed_form_radius() {
+    let settings = Settings {
+        damping: 2.0,
+        ..Settings::default()
+    };
+    let k = 200.0;
+    let rest = 2.0 * (std::f64::consts::PI / N as f64).sin();
+    for amount in [2.0, 10.0, 40.0] {
+        let mut jelly = ring(Vec2::new(0.0, 0.0), 1.0, k, settings);
+        let mut gas = Pressure::new(amount).unwrap();
+        for _ in 0..900 {
+            let _ = jelly.step_with(1.0 / 60.0, &mut gas).unwrap();
+        }
+        let (got, want) = (
+            mean_radius(jelly.positions()),
+            balanced_radius(amount, k, rest),
+        );
+        eprintln!("amount {amount}: radius {got:.5} m against {want:.5} m");
+        assert!(
+            (got - want).abs() <= 0.01 * want,
+            "{amount}: {got} against {want}"
+        );
+    }
+}
+
+/// A jelly dropped on a floor and rolled along it keeps its area within 2% of the area it
+/// rests at, and never leaves the floor's side.
+#[test]
+fn a_rolling_jelly_keeps_its_area() {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 0.1,
+        ..Settings::default()
+    };
+    let mut jelly = ring(Vec2::new(0.0, 0.55), 0.5, 3000.0, settings);
+    let mut gas = Pressure::at(200.0, Pressure::area(jelly.positions())).unwrap();
+    let floor = [
+        Collider::half_space(Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0))
+            .unwrap()
+            .with_friction(0.8, 0.6)
+            .unwrap(),
+    ];
+    let contacts = Contacts::new(&floor, 0.0, Touch::Particles).unwrap();
+    for _ in 0..120 {
+        let _ = jelly
+            .step_touching_particles(1.0 / 60.0, &mut gas, &contacts)
+            .unwrap();
+    }
+    let resting = Pressure::area(jelly.positions());
+    for i in 0..N {
+        jelly.set_velocity(i, Vec2::new(2.0, 0.0)).unwrap();
+    }
+    let (mut least, mut most, start) = (resting, resting, mean_x(&jelly));
+    for _ in 0..180 {
+        let _ = jelly
+            .step_touching_particles(1.0 / 60.0, &mut gas, &contacts)
+            .unwrap();
+        let area = Pressure::area(jelly.positions());
+        (least, most) = (least.min(area), most.max(area));
+        assert!(jelly.positions().iter().all(|p| p.y >= -1e-9));
+    }
+    let travelled = mean_x(&jelly) - start;
+    eprintln!(
+        "rolled {travelled:.2} m, area {:.4}..{:.4} m² around {resting:.4} m²",
+        least, most
+    );
+    assert!(travelled > 1.0, "it rolled: {travelled}");
+    assert!(least >= 0.98 * resting && most <= 1.02 * resting);
+}
+
+fn mean_x(rope: &Rope<Vec2<f64>, N>) -> f64 {
+    rope.positions().iter().map(|p| p.x).sum::<f64>() / N as f64
+}
+
+/// Bad gas is an `Err`; a loop with no area gets no push, never a NaN.
+#[test]
+fn bad_gas_is_refused_and_a_flat_loop_gets_no_push() {
+    assert!(matches!(
+        Pressure::new(f64::NAN),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        Pressure::new(-1.0),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        Pressure::at(1.0, f64::INFINITY),
+        Err(Error::InvalidParameter { .. })
+    ));
+    // A loop folded flat along a line: area 0.
+    let points: [Vec2<f64>; 4] = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::new(2.0, 0.0),
+        Vec2::new(1.0, 0.0),
+    ];
+    assert_eq!(Pressure::area(&points), 0.0);
+    let springs = Springs::<f64, 4>::chain(
+        &points,
+        Material {
+            stiffness: 10.0,
+            damping: 0.0,
+        },
+    )
+    .unwrap();
+    let mut flat = Rope::from_parts(points, [1.0; 4], springs, Settings::default()).unwrap();
+    let mut gas = Pressure::new(5.0).unwrap();
+    let _ = flat.step_with(1.0 / 60.0, &mut gas).unwrap();
+    assert!(flat.positions().iter().all(|p| p.is_finite()));
+    assert_eq!(flat.positions()[1], Vec2::new(1.0, 0.0), "no push");
+}
