@@ -248,7 +248,7 @@ pub use io::graphics;
 #[cfg(all(feature = "xml", dunas_std))]
 pub use io::xml;
 pub use number::scalar;
-pub use objects::{breaking, spline_rope};
+pub use objects::{breaking, spline_rope, water};
 pub use physics::{body, force, integrator, shape, spring, system, timestep};
 
 pub use curves::curve::{Bezier, Cubic, Quadratic};

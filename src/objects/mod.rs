@@ -6,3 +6,4 @@ pub mod breaking;
 pub(crate) mod cloth;
 pub(crate) mod rope;
 pub mod spline_rope;
+pub mod water;

@@ -29,4 +29,5 @@ mod samplers;
 mod snapshots;
 mod soak;
 mod spline_rope;
+mod water;
 mod xml;
