@@ -12,6 +12,8 @@ use crate::{Error, Scalar, Vec2};
 ///
 /// The loop is the system's particles in order, the last joined back to the first (a
 /// [`Springs::closed_loop`](crate::spring::Springs::closed_loop) ring), in either direction.
+/// The pushes of a closed loop sum to zero, so the gas never moves the body as a whole: held
+/// and thrown, a jelly's centre of mass flies the ballistic arc.
 /// Each edge's push, `p` times its length along its outward normal, is shared by its two
 /// ends. A loop whose area is within rounding of 0 (collapsed, or turned inside out through
 /// zero) gets no push that evaluation, never an infinite one. Cost: one cross product and
@@ -73,6 +75,13 @@ impl<S: Scalar> Pressure<S> {
     /// The gas's amount, `n R T`.
     pub fn amount(&self) -> S {
         self.amount
+    }
+
+    /// Lets the gas out: a balloon that bursts. The field cannot see the springs, so when a
+    /// step reports a torn loop ([`StepInfo::snapped`](crate::system::StepInfo::snapped), or
+    /// a cut) the game calls this, and the loop goes limp.
+    pub fn pop(&mut self) {
+        self.amount = S::ZERO;
     }
 
     /// The area the loop `points` encloses (the shoelace formula, taken about the first

@@ -170,3 +170,69 @@ fn bad_gas_is_refused_and_a_flat_loop_gets_no_push() {
     assert!(flat.positions().iter().all(|p| p.is_finite()));
     assert_eq!(flat.positions()[1], Vec2::new(1.0, 0.0), "no push");
 }
+
+/// Held by one particle, swung and let go, a jelly's centre of mass flies the closed-form
+/// ballistic arc from its speed at the release (the gas's pushes sum to zero), within 1% of
+/// its fall; over-blown, its loop tears and `pop` lets it go limp.
+#[test]
+fn a_jelly_is_thrown_and_pops() {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        ..Settings::default()
+    };
+    let mut jelly = ring(Vec2::new(0.0, 0.0), 0.3, 2000.0, settings);
+    let mut gas = Pressure::at(100.0, Pressure::area(jelly.positions())).unwrap();
+    jelly.set_inv_mass(0, 0.0).unwrap();
+    for frame in 1..=30 {
+        let t = frame as f64 / 60.0;
+        let hand = Vec2::new(0.3 * t * t * 60.0 / 30.0, 0.0);
+        jelly.move_pinned(0, hand, 1.0 / 60.0).unwrap();
+        let _ = jelly.step_with(1.0 / 60.0, &mut gas).unwrap();
+    }
+    jelly.set_inv_mass(0, N as f64).unwrap();
+    let com = |r: &Rope<Vec2<f64>, N>| {
+        r.positions()
+            .iter()
+            .fold(Vec2::new(0.0, 0.0), |s, &p| s + p)
+            * (1.0 / N as f64)
+    };
+    let momentum = |r: &Rope<Vec2<f64>, N>| {
+        r.velocities()
+            .iter()
+            .fold(Vec2::new(0.0, 0.0), |s, &v| s + v)
+            * (1.0 / N as f64)
+    };
+    let (start, speed) = (com(&jelly), momentum(&jelly));
+    for _ in 0..60 {
+        let _ = jelly.step_with(1.0 / 60.0, &mut gas).unwrap();
+    }
+    let arc = start + speed * 1.0 + Vec2::new(0.0, -9.81 / 2.0);
+    let off = com(&jelly).distance(arc);
+    eprintln!(
+        "thrown: centre {:?} against the arc's {arc:?} ({off:.4} m off)",
+        com(&jelly)
+    );
+    assert!(off <= 0.01 * 4.905, "{off}");
+    // Blown up past what its springs hold: a spring tears, the game lets the gas out.
+    let mut balloon = ring(
+        Vec2::new(0.0, 0.0),
+        0.3,
+        200.0,
+        Settings {
+            damping: 1.0,
+            ..Settings::default()
+        },
+    );
+    balloon.set_snap(dunas::spring::Snap::Stretch(1.3)).unwrap();
+    let mut gas = Pressure::at(2000.0, Pressure::area(balloon.positions())).unwrap();
+    let mut popped = false;
+    for _ in 0..120 {
+        let info = balloon.step_with(1.0 / 60.0, &mut gas).unwrap();
+        if info.snapped > 0 && !popped {
+            gas.pop();
+            popped = true;
+        }
+    }
+    assert!(popped && gas.amount() == 0.0);
+    assert!(balloon.positions().iter().all(|p| p.is_finite()));
+}
