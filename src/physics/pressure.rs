@@ -16,7 +16,9 @@ use crate::{Error, Scalar, Vec2};
 /// and thrown, a jelly's centre of mass flies the ballistic arc.
 /// Each edge's push, `p` times its length along its outward normal, is shared by its two
 /// ends. A loop whose area is within rounding of 0 (collapsed, or turned inside out through
-/// zero) gets no push that evaluation, never an infinite one. Cost: one cross product and
+/// zero) gets no push that evaluation, never an infinite one. A loop that crosses itself (a
+/// figure eight) counts its lobes' areas with opposite signs, and the gas pushes as if their
+/// difference were its area: build the ring without crossings. Cost: one cross product and
 /// three multiply-adds a particle, and one division.
 ///
 /// Measured (`tests/suite/pressure.rs`): a ring of 16 particles comes to rest at the radius
