@@ -59,16 +59,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let costs = device::meter_frames(
         meter,
         &mut scene,
-        |p| {
-            let substeps = p.water.step(dt, g, &mut p.crate_)?;
-            Ok(dunas::system::StepInfo {
-                substeps,
-                simulated: dt,
-                slow_motion: false,
-                saturated: false,
-                snapped: 0,
-            })
-        },
+        |p| p.water.step(dt, g, &mut p.crate_),
         |p| p.water.draw(Smoothing::CatmullRom, &mut p.curve).map(drop),
     )?;
     let view = dunas::ascii::View::new(

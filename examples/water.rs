@@ -25,8 +25,12 @@ fn main() {
     let mut time = 0.0f32;
     for (frame, until) in [0.5f32, 1.5, 4.0].into_iter().enumerate() {
         while time < until - 1e-3 {
-            pool.step(1.0 / 60.0, 9.81, &mut bodies)
+            let info = pool
+                .step(1.0 / 60.0, 9.81, &mut bodies)
                 .expect("the pool stays calm enough");
+            if info.slow_motion {
+                eprintln!("t = {time:.2} s: slow motion (the substep cap was hit)");
+            }
             time += 1.0 / 60.0;
         }
         let n = pool

@@ -3,6 +3,7 @@
 
 use crate::curves::smooth::Smoothed;
 use crate::error::{check_non_negative, check_points, check_positive, invalid};
+use crate::physics::system::{MAX_SUBSTEPS, StepInfo};
 use crate::{Error, Scalar, Smoothing, Vec2};
 
 /// A body floating on [`Water`]: a box `width` wide and `height` tall, its bottom at
@@ -16,7 +17,7 @@ pub struct Floater<S> {
     pub bottom: S,
     /// Vertical velocity (units per second).
     pub speed: S,
-    /// Width and height (units, > 0).
+    /// Width (units, > 0).
     pub width: S,
     /// Height of the box (units, > 0): a body under water no deeper than this is buoyed by
     /// what it displaces.
@@ -70,7 +71,7 @@ impl<S: Scalar> Floater<S> {
 /// let mut pool = Water::<f32, 16>::new(0.0, 0.25, 1.0, 2.0, 1000.0)?.with_damping(2.0)?;
 /// let mut boat = [Floater::new(2.0, 1.2, 0.5, 0.4, 100.0)?];
 /// for _ in 0..1200 {
-///     pool.step(1.0 / 60.0, 9.81, &mut boat)?;
+///     let _ = pool.step(1.0 / 60.0, 9.81, &mut boat)?;
 /// }
 /// // At rest it floats as deep below the surface under it as Archimedes says: 0.2 m.
 /// let depth = pool.surface_under(2.0, 0.5) - boat[0].bottom;
@@ -193,11 +194,13 @@ impl<S: Scalar, const N: usize> Water<S, N> {
     }
 
     /// Advances the water and the `bodies` on it by `dt` seconds under `gravity` (downwards,
-    /// units per second², ≥ 0), in as many substeps as stability asks (at most 64; a longer
-    /// `dt` simulates less time, as a system's step does). A body's buoyancy is
-    /// `density · gravity ·` the area of its box under the surface of the columns it spans;
-    /// the columns under it are pushed down by as much, shared by their mass (`density ·
-    /// spacing ·` depth below `level`, at least one spacing deep). Returns the substeps taken.
+    /// units per second², ≥ 0), in as many substeps as stability asks (at most 64; a `dt`
+    /// that would need more simulates 64 stable substeps, less than `dt`, and says so in
+    /// `slow_motion`, as a system's step does). A body's buoyancy is `density · gravity ·`
+    /// the area of its box under the surface of the columns it spans; the columns under it
+    /// are pushed down by as much, shared by their mass (`density · spacing ·` depth below
+    /// `level`, at least one spacing deep). Returns what the step did (`saturated` and
+    /// `snapped` are always `false` and 0 here).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative, NaN or infinite `dt` or gravity, or a body
@@ -209,7 +212,7 @@ impl<S: Scalar, const N: usize> Water<S, N> {
         dt: S,
         gravity: S,
         bodies: &mut [Floater<S>; B],
-    ) -> Result<u16, Error> {
+    ) -> Result<StepInfo<S>, Error> {
         check_non_negative(dt, "dt")?;
         check_non_negative(gravity, "gravity")?;
         if bodies
@@ -221,15 +224,28 @@ impl<S: Scalar, const N: usize> Water<S, N> {
                 "each lighter than the water its box displaces (density · width · height)",
             ));
         }
+        let mut info = StepInfo {
+            substeps: 0,
+            simulated: S::ZERO,
+            slow_motion: false,
+            saturated: false,
+            snapped: 0,
+        };
         if dt == S::ZERO {
-            return Ok(0);
+            return Ok(info);
         }
+        // Substeps keep `c · h / spacing ≤ 0.9`; past 64 of them, each is the longest stable.
         let rate = self.speed_of_waves / self.spacing;
-        let n = (dt * rate * S::ratio(10, 9)).ceil_usize(64).max(1);
-        let h = dt / S::from_i16(n as i16);
+        let needed = dt * rate * S::ratio(10, 9);
+        let n = needed.ceil_usize(usize::from(MAX_SUBSTEPS)).max(1);
+        let mut h = dt / S::from_i16(n as i16);
+        if needed > S::from_i16(MAX_SUBSTEPS as i16) {
+            h = S::ratio(9, 10) / rate;
+            info.slow_motion = true;
+        }
         let saved = (self.heights, self.velocities, *bodies);
         for _ in 0..n {
-            self.substep(h, gravity, bodies);
+            self.substep(h, rate * rate, gravity, bodies);
         }
         let sane = |x: S| x.in_safe_range();
         let fine = self
@@ -242,12 +258,13 @@ impl<S: Scalar, const N: usize> Water<S, N> {
             (self.heights, self.velocities, *bodies) = saved;
             return Err(Error::Diverged);
         }
-        Ok(n as u16)
+        info.substeps = n as u16;
+        info.simulated = h * S::from_i16(n as i16);
+        Ok(info)
     }
 
-    fn substep(&mut self, h: S, gravity: S, bodies: &mut [Floater<S>]) {
-        let rate = self.speed_of_waves / self.spacing;
-        let stiffness = rate * rate;
+    /// One substep of `h`; `stiffness` is `(c / spacing)²`.
+    fn substep(&mut self, h: S, stiffness: S, gravity: S, bodies: &mut [Floater<S>]) {
         let mut acc = [S::ZERO; N];
         for i in 0..N {
             let left = self.heights[i.saturating_sub(1)];
@@ -262,6 +279,9 @@ impl<S: Scalar, const N: usize> Water<S, N> {
         let mut pressed = S::ZERO;
         for body in bodies.iter_mut() {
             let half = body.width * S::ratio(1, 2);
+            // A push on a column moves the water above the body's bottom: its mass.
+            let deep = (self.level - body.bottom).max(self.spacing);
+            let per_mass = S::ONE / (column_mass * deep);
             let mut lift = S::ZERO;
             for i in 0..N {
                 let shared = self.shared(i, body.x, half);
@@ -273,8 +293,7 @@ impl<S: Scalar, const N: usize> Water<S, N> {
                     .min(body.height);
                 let force = self.density * gravity * under * shared;
                 lift += force;
-                let deep = (self.level - body.bottom).max(self.spacing);
-                let push = force / (column_mass * deep);
+                let push = force * per_mass;
                 acc[i] -= push;
                 pressed += push;
             }

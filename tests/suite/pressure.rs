@@ -257,3 +257,32 @@ fn a_jelly_is_thrown_and_pops() {
     assert!(popped && gas.amount() == 0.0);
     assert!(balloon.positions().iter().all(|p| p.is_finite()));
 }
+
+/// A `Q16` loop too large for its area to fit the format gets no push and the step says
+/// `saturated`; nothing leaves the range.
+#[cfg(feature = "fixed")]
+#[test]
+fn a_q16_loop_too_large_for_its_area_is_reported() {
+    use dunas::{Q16, Scalar};
+    let q = Q16::from_f64;
+    let points: [Vec2<Q16>; 4] = [
+        Vec2::new(q(-150.0), q(-150.0)),
+        Vec2::new(q(150.0), q(-150.0)),
+        Vec2::new(q(150.0), q(150.0)),
+        Vec2::new(q(-150.0), q(150.0)),
+    ];
+    assert!(!Pressure::signed_area(&points).is_finite()); // 90 000 square units
+    let springs = Springs::<Q16, 4>::closed_loop(
+        &points,
+        Material {
+            stiffness: q(1.0),
+            damping: q(0.0),
+        },
+    )
+    .unwrap();
+    let mut square = Rope::from_parts(points, [Q16::ONE; 4], springs, Settings::default()).unwrap();
+    let mut gas = Pressure::new(q(10.0)).unwrap();
+    let info = square.step_with(Q16::ratio(1, 60), &mut gas).unwrap();
+    assert!(info.saturated);
+    assert_eq!(square.positions(), &points);
+}
