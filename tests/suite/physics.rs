@@ -681,6 +681,69 @@ fn direct_chain_holds_a_whirled_rope_under_a_heavy_bob() {
     assert!(one && link <= 5e-3 && drawn <= 5e-3, "{link} {drawn}");
 }
 
+/// A hand that whirls a `DirectChain` rope moves smoothly through a frame that contacts split
+/// into several substeps. Stepped against a floor it never reaches (whose thin contacts ask
+/// for more substeps as the penguin speeds up), the catapult's rope swings its penguin as the
+/// rope stepped without contacts does: its largest acceleration within 1.25 times that one's.
+/// (The hand used to jump back to the frame's start at every substep: the rope flailed, its
+/// penguin accelerated 2.5 times as hard.)
+#[test]
+fn direct_chain_follows_a_moving_hand_through_contact_substeps() {
+    use dunas::collider::Collider;
+    use dunas::contact::{Contacts, Touch};
+    use dunas::integrator::DirectChain;
+    let settings = Settings {
+        gravity: Vec2::new(0.0, -9.81),
+        damping: 0.05,
+        ..Settings::default()
+    }
+    .with_integrator(DirectChain::default());
+    let material = Material {
+        stiffness: 4000.0,
+        damping: 4.0,
+    };
+    let floor = [Collider::half_space(Vec2::new(0.0, -30.0), Vec2::new(0.0, 1.0)).unwrap()];
+    let contacts = Contacts::new(&floor, 0.03, Touch::Particles).unwrap();
+    let hand = |t: f32| {
+        let turns = t.min(1.0) * t.min(1.0) * 0.5 + (t - 1.0).max(0.0);
+        let a = core::f32::consts::TAU * turns;
+        Vec2::new(0.8 * a.cos(), 0.8 * a.sin())
+    };
+    let dt = 1.0f32 / 60.0;
+    // The penguin's largest acceleration over 3 s (from its frame-to-frame velocities), and
+    // the most substeps a frame took.
+    let whirl = |touching: bool| {
+        let (start, end) = (Vec2::new(0.8f32, 0.0), Vec2::new(0.8, -1.6));
+        let mut rope: Rope<Vec2<f32>, 8, 8, DirectChain> =
+            Rope::new(start, end, 0.4, material, settings).unwrap();
+        rope.hang(7, 3.0).unwrap();
+        let (mut accel, mut most_substeps) = (0.0f32, 0);
+        let mut last = (rope.positions()[7], Vec2::default());
+        for frame in 1..=180 {
+            rope.move_pinned(0, hand(frame as f32 * dt), dt).unwrap();
+            let info = if touching {
+                rope.step_touching(dt, (), &contacts).unwrap()
+            } else {
+                rope.step(dt).unwrap()
+            };
+            most_substeps = most_substeps.max(info.substeps);
+            let v = (rope.positions()[7] - last.0) * (1.0 / dt);
+            if frame > 1 {
+                accel = accel.max((v - last.1).length() / dt);
+            }
+            last = (rope.positions()[7], v);
+        }
+        (accel, most_substeps)
+    };
+    let ((free, _), (touching, substeps)) = (whirl(false), whirl(true));
+    eprintln!(
+        "the penguin's largest acceleration: {free:.0} m/s² in one substep a frame, \
+         {touching:.0} m/s² in up to {substeps}"
+    );
+    assert!(substeps > 1, "the contacts split frames");
+    assert!(touching <= 1.25 * free, "{touching} vs {free} m/s²");
+}
+
 /// A rope of 8 particles (1 m, 1 kg) with `bob` kg on its end, released level and undamped:
 /// the share of the energy its fall released that is left after 10 s, and the largest
 /// stretch of a link over the swing.

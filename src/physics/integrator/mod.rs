@@ -122,8 +122,10 @@ fn memory_of<I: Integrator, S: Scalar, Sh: Shape>(_: &I) -> I::Memory<S, Sh> {
 
 /// Splits a step of `h` seconds into `substeps` equal solves (0 counts as 1), each
 /// `solve(state, hs, forces)` followed by the contacts, `touch(state, (hs, lag))`. A held
-/// particle is at its hand's place at the end of the step, moving at the hand's velocity:
-/// before each solve it is put `left` solves short of there, so it moves through the solves.
+/// particle is at its hand's place at the end of the frame, moving at the hand's velocity:
+/// before each solve it is put where the hand was then (`lag` plus the solves left short of
+/// the frame's end), so it moves through the solves and through the system's substeps; it is
+/// back at the hand's place at the end.
 fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     substeps: u8,
     model: &Model<'_, P, Sh, T>,
@@ -136,10 +138,10 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     let n = substeps.max(1);
     let hs = h / P::Scalar::from_i16(i16::from(n));
     let end = state.pos;
+    let w = model.inv_mass();
     let mut ok = true;
     for left in (0..n).rev() {
-        let behind = hs * P::Scalar::from_i16(i16::from(left));
-        let w = model.inv_mass();
+        let behind = lag + hs * P::Scalar::from_i16(i16::from(left));
         let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
         for (((x, &end), &v), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(v).zip(w) {
             if w <= P::Scalar::ZERO {
@@ -147,7 +149,13 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
             }
         }
         ok &= solve(state, hs, forces);
-        touch(state, (hs, lag + behind));
+        touch(state, (hs, behind));
+    }
+    let x = Sh::flat_mut(&mut state.pos);
+    for ((x, &end), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(w) {
+        if w <= P::Scalar::ZERO {
+            *x = end;
+        }
     }
     ok
 }
