@@ -14,35 +14,30 @@
 //! `cargo run --release --example cloth -- target/boats --png docs/boats.png`). Prints what
 //! each frame cost.
 
+#[path = "common/boats.rs"]
+mod boats;
 #[path = "common/raster.rs"]
 mod raster;
 
 use std::path::PathBuf;
 use std::time::Instant;
 
+use boats::{
+    Boat, CANVAS, Camera, MAST, SEA, SKY, SPARS, arr, fleet, fleet_camera, fleet_view, hull, sail,
+    shade,
+};
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::force::{SailWind, Wind};
-use dunas::integrator::{DirectSprings, Integrator, SymplecticEuler};
-use dunas::spring::Material;
+use dunas::integrator::{DirectSprings, SymplecticEuler};
 use dunas::surface::SurfaceTable;
-use dunas::{Cloth, Vec3, lod};
-use dunas::{Settings, Smoothing};
-use raster::{Camera, Image, lambert};
+use dunas::{Smoothing, Vec3, lod};
+use raster::Image;
 
 const STEP: f32 = 1.0 / 60.0;
 const STEPS_PER_FRAME: usize = 15;
 /// The most samples a side of a drawn sail (its table size).
 const DRAWN: usize = 24;
 const SMOOTHING: Smoothing = Smoothing::NaturalSpline;
-const MAST: [u8; 3] = [90, 70, 50];
-const CANVAS: [f32; 3] = [240.0, 232.0, 210.0];
-const HULL: [f32; 3] = [170.0, 45.0, 40.0];
-const DECK: [f32; 3] = [200.0, 160.0, 110.0];
-const SKY: [u8; 3] = [160, 200, 235];
-const SEA: [f32; 3] = [30.0, 90.0, 140.0];
-/// Sunlight, from the upper left and behind the camera.
-const LIGHT: [f32; 3] = [0.35, 0.55, -0.75];
 /// A stay downwind of the sail, 5 cm thick (a tenth of the 8×8 sail's particle spacing):
 /// the sail fills against it.
 const STAY: ([f32; 3], [f32; 3], f32) = ([1.7, 4.6, 0.75], [1.7, 0.4, 0.75], 0.05);
@@ -95,54 +90,6 @@ fn parse_args() -> Result<Args, String> {
     })
 }
 
-/// A gaff-rigged sail, 3 m on the boom and 4 m on the mast, 2 kg in all: its luff on the mast
-/// (column 0), its head on the gaff (row 0), its foot on the boom (the last row), its leech
-/// free. Spring stiffness does not change with the grid (a membrane), so sails of any size are
-/// the same cloth. The wind blows along +z with a gust every 3 s, from `phase` seconds.
-/// Stepped by `integrator`.
-fn sail<I: Integrator, const U: usize, const V: usize>(
-    integrator: I,
-    wind_speed: f32,
-    phase: f32,
-) -> (Cloth<Vec3<f32>, U, V, I>, SailWind<f32>) {
-    let settings = Settings {
-        gravity: Vec3::new(0.0, -9.81, 0.0),
-        damping: 0.3,
-        ..Settings::default()
-    }
-    .with_integrator(integrator);
-    let materials = [(900.0, 0.6), (300.0, 0.2), (60.0, 0.05)]
-        .map(|(stiffness, damping)| Material { stiffness, damping });
-    let mut cloth = Cloth::rectangle(
-        Vec3::new(0.0, 4.5, 0.0),
-        Vec3::new(3.0, 0.0, 0.0),
-        Vec3::new(0.0, -4.0, 0.0),
-        2.0,
-        materials,
-        settings,
-    )
-    .expect("valid sail");
-    cloth.pin_column(0).expect("column in range");
-    cloth.pin_row(0).expect("row in range");
-    cloth.pin_row(V - 1).expect("row in range");
-    let mut air = Wind::still(0.02);
-    air.velocity = Vec3::new(0.0, 0.0, wind_speed);
-    air.gust = Vec3::new(0.0, 0.0, 0.8 * wind_speed);
-    air.gust_start = phase;
-    air.gust_length = 1.5;
-    air.gust_every = 3.0;
-    (cloth, SailWind::new(air, 0.7).expect("valid wind"))
-}
-
-fn arr(p: Vec3<f32>) -> [f32; 3] {
-    [p.x, p.y, p.z]
-}
-
-fn shade(normal: [f32; 3], base: [f32; 3]) -> [f32; 3] {
-    let l = Vec3::new(LIGHT[0], LIGHT[1], LIGHT[2]);
-    lambert(normal, arr(l.normalize().unwrap_or(l)), base)
-}
-
 /// The sky, the sea below the horizon at `horizon` (pixels from the top), darker towards the
 /// viewer, with swell lines that move with time `t`.
 fn seascape(w: usize, h: usize, horizon: f32, t: f32) -> Image {
@@ -173,38 +120,15 @@ fn seascape(w: usize, h: usize, horizon: f32, t: f32) -> Image {
     img
 }
 
-/// A hull (flat-shaded triangles, a deck and two sides down to the waterline) and its mast,
-/// boom and gaff, through `cam`. The boat's bow points along +x, its mast at the origin.
+/// A hull (flat-shaded triangles) and its mast, boom and gaff, through `cam`.
 fn draw_boat(img: &mut Image, cam: &Camera) {
-    let v = |x: f32, y: f32, z: f32| [x, y, z];
-    let (bow, mid_port, mid_star) = (v(4.4, 0.45, 0.0), v(1.6, 0.5, -0.95), v(1.6, 0.5, 0.95));
-    let (stern_port, stern_star) = (v(-1.0, 0.55, -0.75), v(-1.0, 0.55, 0.75));
-    let (keel_bow, keel_mid, keel_stern) = (v(3.9, 0.0, 0.0), v(1.6, 0.0, 0.0), v(-0.8, 0.0, 0.0));
-    let faces = [
-        ([bow, mid_port, mid_star], DECK),
-        ([mid_port, stern_port, stern_star], DECK),
-        ([mid_port, stern_star, mid_star], DECK),
-        ([bow, mid_port, keel_bow], HULL),
-        ([mid_port, keel_mid, keel_bow], HULL),
-        ([mid_port, stern_port, keel_mid], HULL),
-        ([stern_port, keel_stern, keel_mid], HULL),
-        ([bow, mid_star, keel_bow], HULL),
-        ([mid_star, keel_mid, keel_bow], HULL),
-        ([mid_star, stern_star, keel_mid], HULL),
-        ([stern_star, keel_stern, keel_mid], HULL),
-        ([stern_port, stern_star, keel_stern], HULL),
-    ];
-    for (tri, base) in faces {
+    for (tri, base) in hull() {
         let [a, b, c] = tri.map(|p| Vec3::new(p[0], p[1], p[2]));
         let n = (b - a).cross(c - a).normalize().unwrap_or_default();
         let color = shade(arr(n), base);
         img.triangle(tri.map(|p| cam.project(p)), [color; 3]);
     }
-    for (a, b) in [
-        ([0.0, 0.5, 0.0], [0.0, 5.2, 0.0]), // mast
-        ([0.0, 0.5, 0.0], [3.1, 0.5, 0.0]), // boom
-        ([0.0, 4.5, 0.0], [3.1, 4.5, 0.0]), // gaff
-    ] {
+    for (a, b) in SPARS {
         let (a, b) = (cam.project(a), cam.project(b));
         let width = (cam.scale / 40.0).clamp(0.0, 2.0) as i32;
         for dx in -width..=width {
@@ -263,57 +187,6 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
             du.cross(dv).normalize().unwrap_or(Vec3::new(0.0, 0.0, 1.0))
         })
         .collect()
-}
-
-/// A boat of the fleet: its sail and wind, where it sails (x across, z away from the
-/// camera, metres) and its heading's yaw.
-struct Boat {
-    sail: Cloth<Vec3<f32>, 8, 8, DirectSprings>,
-    wind: SailWind<f32>,
-    at: [f32; 2],
-    yaw: f32,
-}
-
-/// The fleet on a grid of lanes, staggered, from 16 m away and 9 m more a row.
-fn fleet(boats: usize) -> Vec<Boat> {
-    let per_row = (boats as f32).sqrt().ceil() as usize;
-    (0..boats)
-        .map(|k| {
-            let (col, row) = (k % per_row, k / per_row);
-            let (sail, wind) = sail::<_, 8, 8>(
-                DirectSprings::default(),
-                4.0 + (k % 5) as f32 * 0.5,
-                k as f32 * 0.37,
-            );
-            let across = (col as f32 - (per_row - 1) as f32 / 2.0) * 9.0 + (row % 2) as f32 * 4.5;
-            Boat {
-                sail,
-                wind,
-                at: [across, 16.0 + row as f32 * 9.0],
-                yaw: 0.45 + 0.08 * ((k * 7) % 5) as f32,
-            }
-        })
-        .collect()
-}
-
-/// The horizon's height on screen and the fleet camera's focal length, pixels.
-fn fleet_view(h: usize) -> (f32, f32) {
-    (h as f32 * 0.3, h as f32 * 1.6)
-}
-
-/// A weak-perspective camera for an object `at` (x across, z away): its own scale, placed
-/// where a pinhole 6 m above the sea would see it; nearer objects draw over farther ones.
-fn fleet_camera(w: usize, h: usize, at: [f32; 2], yaw: f32) -> Camera {
-    let (horizon, focal) = fleet_view(h);
-    let eye_height = 6.0;
-    let scale = focal / at[1];
-    Camera {
-        yaw,
-        pitch: 0.12,
-        scale,
-        center: [w as f32 / 2.0 + at[0] * scale, horizon + eye_height * scale],
-        depth: at[1] * 100.0,
-    }
 }
 
 /// A sail's drawn points and normals, and its counts a direction.

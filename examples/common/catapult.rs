@@ -1,10 +1,12 @@
-//! The catapult game's scene, shared by `examples/catapult.rs` and its test: a hand whirls a
-//! rope with a penguin on its end, lets go at the click, and the penguin flies a ballistic
-//! arc to the snow. Metres, seconds, kilograms; y up.
+//! The catapult game's scene, shared by `examples/catapult.rs`, the browser page (`web/`)
+//! and their tests: a hand whirls a rope with a penguin on its end, lets go at the click, and
+//! the penguin flies a ballistic arc to the snow; a swipe across the drawn rope cuts it.
+//! Metres, seconds, kilograms; y up.
 #![allow(dead_code)]
 
 use dunas::ascii::{Canvas, View};
 use dunas::body::Body;
+use dunas::breaking::Piece;
 use dunas::integrator::DirectChain;
 use dunas::prelude::*;
 
@@ -21,8 +23,13 @@ const ROPE_LENGTH: f32 = 1.6;
 const HAND_RADIUS: f32 = 0.8;
 /// ...at this many turns a second (counter-clockwise), after a second of spin-up.
 const TURNS: f32 = 1.0;
-/// The player clicks once the penguin has whirled this long and heads up and forward.
+/// The game clicks by itself once the penguin has whirled this long and heads up and forward
+/// (unless the player clicks: [`Catapult::played`]).
 const CLICK_AFTER: f32 = 3.0;
+/// The rope's radius (m): a cut piece lies on the snow.
+const THICKNESS: f32 = 0.03;
+/// Points the drawn rope has: 5 a span (it is drawn one curve a piece once cut).
+pub const DRAWN: usize = 36;
 
 /// Where the penguin is: on the rope, in the air, or landed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,6 +53,12 @@ pub struct Catapult {
     pub released: Option<(Vec2<f32>, Vec2<f32>)>,
     trail: Vec<Vec2<f32>>,
     time: f32,
+    /// Whether the game clicks by itself (`false`: the player clicks with [`Catapult::let_go`]).
+    auto_click: bool,
+    /// The player's click, carried out at the next frame's end.
+    clicked: bool,
+    /// The snow, which a cut piece of rope falls on.
+    snow: [Collider<Vec2<f32>>; 1],
     /// Frames whose step hit the substep cap and simulated less than the frame.
     pub slow_frames: u32,
     /// The largest stretch of the rope (its particles' chain) while the penguin hangs on it
@@ -54,7 +67,16 @@ pub struct Catapult {
 }
 
 impl Catapult {
+    /// The game that clicks by itself, 3 s in, when the penguin heads up and forward.
     pub fn new() -> Catapult {
+        Catapult {
+            auto_click: true,
+            ..Catapult::played()
+        }
+    }
+
+    /// The game the player clicks ([`let_go`](Catapult::let_go)).
+    pub fn played() -> Catapult {
         let settings = Settings {
             gravity: Vec2::new(0.0, -9.81),
             damping: 0.05,
@@ -84,6 +106,13 @@ impl Catapult {
             released: None,
             trail: Vec::new(),
             time: 0.0,
+            auto_click: false,
+            clicked: false,
+            snow: [
+                Collider::half_space(Vec2::new(0.0, GROUND), Vec2::new(0.0, 1.0))
+                    .and_then(|c| c.with_friction(0.5, 0.4))
+                    .expect("a valid floor"),
+            ],
             slow_frames: 0,
             largest_stretch: 0.0,
         }
@@ -107,9 +136,17 @@ impl Catapult {
         self.rope
             .move_pinned(0, Self::hand(self.time), STEP)
             .expect("the hand stays in range");
-        let info = self.rope.step(STEP).expect("the rope stays stable");
+        // The whirled rope cannot reach the snow; a cut piece falls on it (the contacts' extra
+        // substeps are paid only then).
+        let info = if self.pieces() > 1 {
+            let snow = Contacts::new(&self.snow, THICKNESS, Touch::Particles).expect("valid");
+            self.rope.step_touching(STEP, (), &snow)
+        } else {
+            self.rope.step(STEP)
+        }
+        .expect("the rope stays stable");
         self.slow_frames += u32::from(info.slow_motion);
-        if self.penguin == Penguin::Swinging {
+        if self.penguin == Penguin::Swinging && self.pieces() == 1 {
             let length: f32 = self
                 .rope
                 .positions()
@@ -122,7 +159,8 @@ impl Catapult {
             Penguin::Swinging => {
                 let v = self.rope.velocities()[7];
                 let heading = v.y.atan2(v.x).to_degrees();
-                if self.time > CLICK_AFTER && (30.0..60.0).contains(&heading) {
+                let auto = self.auto_click && self.time > CLICK_AFTER;
+                if self.clicked || (auto && (30.0..60.0).contains(&heading)) {
                     let body = self
                         .rope
                         .release(7, PENGUIN)
@@ -147,6 +185,48 @@ impl Catapult {
             }
             Penguin::Landed { .. } => {}
         }
+        self.clicked = false;
+    }
+
+    /// The player's click: the hand lets go of the penguin at the end of the next frame
+    /// (nothing once it has left the rope).
+    pub fn let_go(&mut self) {
+        self.clicked = true;
+    }
+
+    /// The rope drawn as the player sees it: a Catmull-Rom curve through its particles, one
+    /// a piece; returns how many pieces `pieces[..n]` says are in `points`.
+    pub fn drawn(&self, points: &mut [Vec2<f32>; DRAWN], pieces: &mut [Piece; 8]) -> usize {
+        self.rope
+            .draw(Smoothing::CatmullRom, points, pieces)
+            .unwrap_or(0)
+    }
+
+    /// How many pieces the rope is in (1 until it is cut).
+    pub fn pieces(&self) -> usize {
+        self.rope.pieces().count()
+    }
+
+    /// A swipe from `from` to `to` (m) cuts the rope where it crosses its drawn curve first;
+    /// returns whether it cut. The penguin stays on its piece.
+    pub fn cut(&mut self, from: Vec2<f32>, to: Vec2<f32>) -> bool {
+        let (mut points, mut pieces) = ([Vec2::default(); DRAWN], [Piece::EMPTY; 8]);
+        let n = self.drawn(&mut points, &mut pieces);
+        matches!(self.rope.cut(&points, &pieces[..n], from, to), Ok(Some(_)))
+    }
+
+    /// The penguin's trail since it left the rope (m).
+    pub fn trail(&self) -> &[Vec2<f32>] {
+        &self.trail
+    }
+
+    /// Where the penguin is (m).
+    pub fn penguin_at(&self) -> Vec2<f32> {
+        match self.penguin {
+            Penguin::Swinging => self.rope.positions()[7],
+            Penguin::Flying(body) => body.position,
+            Penguin::Landed { x, .. } => Vec2::new(x, GROUND),
+        }
     }
 
     /// The scene as text, `w × h` characters: the snow, the hand, the rope, the penguin and
@@ -158,23 +238,14 @@ impl Catapult {
             View::new(Vec2::new(-3.0, 2.5), 24.0 / w as f32, 6.0 / h as f32).expect("a valid view");
         let (_, snow) = view.cell(Vec2::new(0.0, GROUND));
         canvas.line((0, snow), (w as i32 - 1, snow), b'=');
-        let (mut points, mut pieces) = ([Vec2::default(); 40], [dunas::breaking::Piece::EMPTY; 8]);
-        if let Ok(n) = self
-            .rope
-            .draw(Smoothing::CatmullRom, &mut points, &mut pieces)
-        {
-            for piece in &pieces[..n] {
-                canvas.polyline(&view, &points[piece.points.clone()], b'#');
-            }
+        let (mut points, mut pieces) = ([Vec2::default(); DRAWN], [Piece::EMPTY; 8]);
+        let n = self.drawn(&mut points, &mut pieces);
+        for piece in &pieces[..n] {
+            canvas.polyline(&view, &points[piece.points.clone()], b'#');
         }
         canvas.points(&view, &self.trail, b'.');
         canvas.points(&view, &self.rope.positions()[..1], b'H');
-        let penguin = match self.penguin {
-            Penguin::Swinging => self.rope.positions()[7],
-            Penguin::Flying(body) => body.position,
-            Penguin::Landed { x, .. } => Vec2::new(x, GROUND),
-        };
-        canvas.points(&view, &[penguin], b'@');
+        canvas.points(&view, &[self.penguin_at()], b'@');
         canvas
             .rows()
             .map(|r| String::from_utf8_lossy(r).into_owned())

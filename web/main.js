@@ -1,0 +1,301 @@
+// The page's loader and painter: instantiates dunas_web.wasm (no bindings generator), runs
+// it at 60 steps a second, draws its draw list on the canvas, and turns the mouse or a
+// touch into clicks and swipes. `window.dunas` exposes the game to the browser test.
+
+// Record styles: the values of `Style` in web/src/draw_list.rs.
+const SNOW = 0, ROPE = 1, PARTICLES = 2, HAND = 3, PENGUIN = 4, TRAIL = 5, TARGET = 6,
+  SEA = 7, TRIANGLE = 8, SPAR = 9;
+const STEP_MS = 1000 / 60;
+const HELP = [
+  'Click to let go of the penguin, swipe across the rope to cut it; click again once it lands.',
+  'Click to send a gust through the fleet.',
+];
+
+const canvas = document.getElementById('view');
+const ctx = canvas.getContext('2d');
+const status = document.getElementById('status');
+const showParticles = document.getElementById('particles');
+
+const { instance } = await WebAssembly.instantiateStreaming(fetch('dunas_web.wasm'), {});
+const wasm = instance.exports;
+
+let scene = 0;
+let length = 0;
+// The cost of `frame()` (a step and its draw list), over the last 60 frames.
+const costs = [];
+
+function start(which) {
+  scene = which;
+  wasm.start(which, canvas.width, canvas.height);
+  length = 0;
+  costs.length = 0;
+  document.getElementById('catapult').setAttribute('aria-pressed', String(which === 0));
+  document.getElementById('boats').setAttribute('aria-pressed', String(which !== 0));
+  document.getElementById('help').textContent = HELP[which === 0 ? 0 : 1];
+}
+
+function frame() {
+  const t0 = performance.now();
+  length = wasm.frame();
+  costs.push(performance.now() - t0);
+  if (costs.length > 60) costs.shift();
+}
+
+function records() {
+  const list = new Float32Array(wasm.memory.buffer, wasm.draw_list(), length);
+  const out = [];
+  for (let i = 0; i + 1 < list.length;) {
+    const style = list[i], n = list[i + 1];
+    out.push([style, list.subarray(i + 2, i + 2 + n)]);
+    i += 2 + n;
+  }
+  return out;
+}
+
+function polyline(p) {
+  ctx.beginPath();
+  ctx.moveTo(p[0], p[1]);
+  for (let i = 2; i + 1 < p.length; i += 2) ctx.lineTo(p[i], p[i + 1]);
+  ctx.stroke();
+}
+
+function winterSky() {
+  const g = ctx.createLinearGradient(0, 0, 0, canvas.height);
+  g.addColorStop(0, '#6f9fd0');
+  g.addColorStop(1, '#dfeaf5');
+  ctx.fillStyle = g;
+  ctx.fillRect(0, 0, canvas.width, canvas.height);
+  // Far hills.
+  ctx.fillStyle = '#c7d6e6';
+  ctx.beginPath();
+  ctx.moveTo(0, canvas.height * 0.8);
+  for (let x = 0; x <= canvas.width; x += 40) {
+    ctx.lineTo(x, canvas.height * (0.62 + 0.06 * Math.sin(x * 0.011) + 0.03 * Math.sin(x * 0.037)));
+  }
+  ctx.lineTo(canvas.width, canvas.height);
+  ctx.lineTo(0, canvas.height);
+  ctx.fill();
+}
+
+function sea(horizon, time) {
+  const w = canvas.width, h = canvas.height;
+  const sky = ctx.createLinearGradient(0, 0, 0, horizon);
+  sky.addColorStop(0, '#7fb2e0');
+  sky.addColorStop(1, '#cfe3f2');
+  ctx.fillStyle = sky;
+  ctx.fillRect(0, 0, w, horizon);
+  const water = ctx.createLinearGradient(0, horizon, 0, h);
+  water.addColorStop(0, '#3f86b0');
+  water.addColorStop(1, '#12476e');
+  ctx.fillStyle = water;
+  ctx.fillRect(0, horizon, w, h - horizon);
+  // Swell: crests that bunch up towards the horizon and roll in with time.
+  ctx.strokeStyle = 'rgba(200, 230, 250, 0.35)';
+  ctx.lineWidth = 1;
+  for (let n = 1; n < 16; n++) {
+    const d = n + ((time * 0.4) % 1);
+    const y = horizon + (h - horizon) * (1 - 1 / (0.35 * d + 1)) * 1.25;
+    const amp = 1 + 0.35 * d;
+    ctx.beginPath();
+    for (let x = 0; x <= w; x += 8) {
+      const yy = y + amp * Math.sin(x * 0.05 / amp + time * 1.5 + n);
+      if (x === 0) ctx.moveTo(x, yy); else ctx.lineTo(x, yy);
+    }
+    ctx.stroke();
+  }
+}
+
+function penguin(x, y, r) {
+  ctx.fillStyle = '#1b1f2a';
+  ctx.beginPath();
+  ctx.ellipse(x, y, r * 0.8, r, 0, 0, 2 * Math.PI);
+  ctx.fill();
+  ctx.fillStyle = '#f4f4f0';
+  ctx.beginPath();
+  ctx.ellipse(x, y + r * 0.15, r * 0.5, r * 0.75, 0, 0, 2 * Math.PI);
+  ctx.fill();
+  ctx.fillStyle = '#f29a1f';
+  ctx.beginPath();
+  ctx.moveTo(x - r * 0.15, y - r * 0.45);
+  ctx.lineTo(x + r * 0.15, y - r * 0.45);
+  ctx.lineTo(x, y - r * 0.25);
+  ctx.fill();
+  ctx.fillStyle = '#fff';
+  for (const s of [-1, 1]) {
+    ctx.beginPath();
+    ctx.arc(x + s * r * 0.22, y - r * 0.6, r * 0.1, 0, 2 * Math.PI);
+    ctx.fill();
+  }
+}
+
+function draw() {
+  const all = records();
+  if (scene === 0) winterSky();
+  for (const [style, p] of all) {
+    switch (style) {
+      case SNOW:
+        ctx.fillStyle = '#f7fbff';
+        ctx.fillRect(0, p[1], canvas.width, canvas.height - p[1]);
+        ctx.strokeStyle = '#b9cde0';
+        ctx.lineWidth = 2;
+        polyline(p);
+        break;
+      case ROPE:
+        ctx.strokeStyle = '#7a5230';
+        ctx.lineWidth = 5;
+        ctx.lineCap = ctx.lineJoin = 'round';
+        polyline(p);
+        break;
+      case PARTICLES:
+        if (!showParticles.checked) break;
+        ctx.strokeStyle = 'rgba(200, 40, 40, 0.8)';
+        ctx.lineWidth = 1;
+        polyline(p);
+        ctx.fillStyle = '#c82828';
+        for (let i = 0; i + 1 < p.length; i += 2) {
+          ctx.beginPath();
+          ctx.arc(p[i], p[i + 1], 3, 0, 2 * Math.PI);
+          ctx.fill();
+        }
+        break;
+      case HAND: {
+        const [x, y, r, ox, oy] = p;
+        // The tower, the arm that whirls the hand round its pivot, and the hand.
+        ctx.fillStyle = '#6b4a2b';
+        ctx.fillRect(ox - r * 0.6, oy, r * 1.2, canvas.height - oy);
+        ctx.strokeStyle = '#8a6038';
+        ctx.lineWidth = r * 0.8;
+        ctx.lineCap = 'round';
+        polyline([ox, oy, x, y]);
+        ctx.fillStyle = '#d24d3a';
+        ctx.beginPath();
+        ctx.arc(x, y, r, 0, 2 * Math.PI);
+        ctx.fill();
+        break;
+      }
+      case PENGUIN:
+        penguin(p[0], p[1], p[2]);
+        break;
+      case TRAIL:
+        ctx.fillStyle = 'rgba(40, 60, 90, 0.5)';
+        for (let i = 0; i + 1 < p.length; i += 4) ctx.fillRect(p[i] - 1.5, p[i + 1] - 1.5, 3, 3);
+        break;
+      case TARGET:
+        ctx.strokeStyle = '#2b6e2b';
+        ctx.lineWidth = 2;
+        polyline([p[0], p[1], p[0], p[1] - 28]);
+        ctx.fillStyle = '#3c9a3c';
+        ctx.beginPath();
+        ctx.moveTo(p[0], p[1] - 28);
+        ctx.lineTo(p[0] + 16, p[1] - 22);
+        ctx.lineTo(p[0], p[1] - 16);
+        ctx.fill();
+        break;
+      case SEA:
+        sea(p[0], p[1]);
+        break;
+      case TRIANGLE:
+        ctx.fillStyle = `rgb(${p[6] | 0}, ${p[7] | 0}, ${p[8] | 0})`;
+        ctx.beginPath();
+        ctx.moveTo(p[0], p[1]);
+        ctx.lineTo(p[2], p[3]);
+        ctx.lineTo(p[4], p[5]);
+        ctx.closePath();
+        ctx.fill();
+        // A hairline of the same colour hides the seams between triangles.
+        ctx.strokeStyle = ctx.fillStyle;
+        ctx.lineWidth = 0.6;
+        ctx.stroke();
+        break;
+      case SPAR:
+        ctx.strokeStyle = '#5a4632';
+        ctx.lineWidth = p[4];
+        ctx.lineCap = 'round';
+        polyline(p.subarray(0, 4));
+        break;
+    }
+  }
+}
+
+const mean = (v) => v.reduce((a, b) => a + b, 0) / Math.max(v.length, 1);
+
+function report() {
+  const t = wasm.time().toFixed(1);
+  const cost = `frame ${mean(costs).toFixed(3)} ms (step + draw list, mean of the last ${costs.length})`;
+  if (scene !== 0) {
+    status.textContent = `t = ${t} s · ${cost} · 9 sails of 8×8 particles, one solve a frame, drawn 12×12`;
+    return;
+  }
+  const states = ['whirling', 'flying', 'landed'];
+  let line = `t = ${t} s · ${states[wasm.penguin()]} · ${cost} · largest stretch ${(wasm.largest_stretch() * 100).toFixed(2)}%`;
+  if (wasm.pieces() > 1) line += ` · the rope is in ${wasm.pieces()} pieces`;
+  if (wasm.penguin() === 2) {
+    line += `\nlanded at x = ${wasm.landed_x().toFixed(3)} m; the closed-form arc from its release lands at ${wasm.arc_x().toFixed(3)} m`;
+  }
+  status.textContent = line;
+  status.style.whiteSpace = 'pre-line';
+}
+
+let last = performance.now(), owed = 0;
+function tick(now) {
+  owed += Math.min(now - last, 100);
+  last = now;
+  for (let n = 0; owed >= STEP_MS && n < 4; n++) {
+    frame();
+    owed -= STEP_MS;
+  }
+  owed = Math.min(owed, STEP_MS);
+  if (length > 0) draw();
+  report();
+  requestAnimationFrame(tick);
+}
+
+// The pointer: a press and release that hardly moved is a click; a drag is a swipe, each
+// move a stroke that cuts where it crosses the rope (once a swipe).
+function at(event) {
+  const r = canvas.getBoundingClientRect();
+  return [(event.clientX - r.left) * canvas.width / r.width,
+    (event.clientY - r.top) * canvas.height / r.height];
+}
+let press = null;
+canvas.addEventListener('pointerdown', (e) => {
+  press = { from: at(e), last: at(e), swiped: false, cut: false };
+  canvas.setPointerCapture(e.pointerId);
+});
+canvas.addEventListener('pointermove', (e) => {
+  if (!press) return;
+  const p = at(e);
+  if (Math.hypot(p[0] - press.from[0], p[1] - press.from[1]) > 8) press.swiped = true;
+  // A swipe cuts once: the first stroke that crosses the rope.
+  if (press.swiped && !press.cut) press.cut = wasm.swipe(press.last[0], press.last[1], p[0], p[1]) === 1;
+  press.last = p;
+});
+canvas.addEventListener('pointerup', () => {
+  if (press && !press.swiped) wasm.click();
+  press = null;
+});
+document.getElementById('catapult').addEventListener('click', () => start(0));
+document.getElementById('boats').addEventListener('click', () => start(1));
+
+window.dunas = {
+  wasm,
+  scene: () => scene,
+  // The rope's particle `i` in page coordinates (for the test's swipe).
+  particleOnPage(i) {
+    const r = canvas.getBoundingClientRect();
+    return [r.left + wasm.particle(i, 0) * r.width / canvas.width,
+      r.top + wasm.particle(i, 1) * r.height / canvas.height];
+  },
+  // How many curves of rope the last frame drew.
+  drawnPieces: () => records().filter(([style]) => style === ROPE).length,
+  // Mean ms of a frame over `frames` frames of a fresh catapult game, in this browser.
+  bench(frames) {
+    const t0 = performance.now();
+    wasm.bench_catapult(frames);
+    return (performance.now() - t0) / frames;
+  },
+  frameCost: () => mean(costs),
+};
+
+start(0);
+requestAnimationFrame(tick);
