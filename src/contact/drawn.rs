@@ -1,0 +1,249 @@
+//! What contacts test and move: a drawn curve's spans and a drawn surface's cells, each point
+//! a weighted sum of the particles, and how a correction at a drawn point reaches them.
+
+use crate::curves::smooth::{Smoothed, Smoothing};
+use crate::{Aabb, Point, Scalar};
+
+/// A curve of spans drawn through `K` control points, as contacts test it: each span lies
+/// in the box of its own control points, and each of its points is a weighted sum of the
+/// `K` (see [`Smoothed`]).
+pub(crate) trait DrawnSpans<P: Point, const K: usize> {
+    /// Number of spans.
+    fn span_count(&self) -> usize;
+    /// A box that holds span `span`.
+    fn span_bounds(&self, span: usize) -> Aabb<P>;
+    /// The parameter in `[0, 1]` of span `span` where `key` is least.
+    fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar;
+    /// The point of span `span` at `t`.
+    fn point(&self, span: usize, t: P::Scalar) -> P;
+    /// The control points' weights in that point.
+    fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]);
+    /// Redraws through moved control points; `false` when they left the range.
+    fn rebuild(&mut self, pos: &[P; K]) -> bool;
+    /// Whether the last span joins the first (a loop).
+    fn is_closed(&self) -> bool {
+        false
+    }
+}
+
+/// A [`Smoothed`] curve with what rebuilds it: a ring, or the open curve through the first
+/// `len` control points.
+pub(super) struct Rebuilt<P: Point, const K: usize> {
+    pub(super) curve: Smoothed<P, K>,
+    pub(super) smoothing: Smoothing,
+    pub(super) closed: bool,
+    pub(super) len: usize,
+}
+
+impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
+    fn span_count(&self) -> usize {
+        self.curve.span_count()
+    }
+    fn span_bounds(&self, span: usize) -> Aabb<P> {
+        self.curve.span_bounds(span)
+    }
+    fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
+        self.curve.deepest(span, key)
+    }
+    fn point(&self, span: usize, t: P::Scalar) -> P {
+        self.curve.point(span, t)
+    }
+    fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
+        self.curve.weights(span, t, weights);
+    }
+    fn is_closed(&self) -> bool {
+        self.closed
+    }
+    fn rebuild(&mut self, pos: &[P; K]) -> bool {
+        let curve = match (self.closed, self.len == K) {
+            (true, _) => Smoothed::ring(self.smoothing, pos),
+            (false, true) => Smoothed::open(self.smoothing, pos),
+            (false, false) => Smoothed::open_first(self.smoothing, pos, self.len),
+        };
+        match curve {
+            Ok(c) => {
+                self.curve = c;
+                true
+            }
+            Err(_) => false,
+        }
+    }
+}
+
+/// `Σ w(i) · p_i`.
+pub(super) fn point_of<P: Point>(points: &[P], w: impl Fn(usize) -> P::Scalar) -> P {
+    points
+        .iter()
+        .enumerate()
+        .fold(P::default(), |acc, (i, &p)| acc + p * w(i))
+}
+
+/// The inverse mass of the drawn point with particle weights `w`, `Σ w_i² / m_i` over the
+/// free particles (what a push on that point meets), or `None` when every particle that moves
+/// it is pinned.
+pub(super) fn point_inv_mass<S: Scalar>(inv_mass: &[S], w: impl Fn(usize) -> S) -> Option<S> {
+    let norm = inv_mass
+        .iter()
+        .enumerate()
+        .filter(|&(_, &m)| m > S::ZERO)
+        .fold(S::ZERO, |norm, (i, &m)| norm + w(i) * w(i) * m);
+    (norm > S::ZERO).then_some(norm)
+}
+
+/// Moves the particles so that the drawn point with particle weights `w` moves by `dx` and
+/// its velocity changes by `dv`: the smallest change in the inverse-mass metric. Returns the
+/// momentum the particles gained, or `None` when every particle that moves the point is
+/// pinned.
+pub(super) fn spread<P: Point>(
+    pos: &mut [P],
+    vel: &mut [P],
+    inv_mass: &[P::Scalar],
+    w: impl Fn(usize) -> P::Scalar,
+    (dx, dv): (P, P),
+) -> Option<P> {
+    let zero = P::Scalar::ZERO;
+    let (mut norm, mut sum) = (zero, zero);
+    for (i, &m) in inv_mass.iter().enumerate() {
+        if m > zero {
+            let wi = w(i);
+            norm += wi * wi * m;
+            sum += wi;
+        }
+    }
+    if norm <= zero {
+        return None;
+    }
+    let share = P::Scalar::ONE / norm;
+    for (i, ((x, v), &m)) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass).enumerate() {
+        let wi = w(i);
+        if wi != zero && m > zero {
+            let k = wi * m * share;
+            *x += dx * k;
+            *v += dv * k;
+        }
+    }
+    Some(dv * (sum * share))
+}
+
+/// A point of the surface that a smoothing draws through a `U × V` grid: its two directions'
+/// particle weights.
+pub(super) struct SurfacePoint<S, const U: usize, const V: usize> {
+    pub(super) smoothing: Smoothing,
+    pub(super) wu: [S; U],
+    pub(super) wv: [S; V],
+}
+
+impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
+    /// Moves to `(u, v)` in `[0, 1]²` of cell `(cu, cv)`, the cell between particles
+    /// `(cu, cv)` and `(cu + 1, cv + 1)`.
+    pub(super) fn at(&mut self, (cu, cv): (usize, usize), (u, v): (S, S)) {
+        let (su, tu) = locate(self.smoothing, cu, u, U);
+        let (sv, tv) = locate(self.smoothing, cv, v, V);
+        self.smoothing.weights(false, su, tu, &mut self.wu);
+        self.smoothing.weights(false, sv, tv, &mut self.wv);
+    }
+
+    /// `Σ wu_i wv_j · points[j·U + i]`.
+    pub(super) fn point<P: Point<Scalar = S>>(&self, points: &[P]) -> P {
+        let mut sum = P::default();
+        for (row, &wv) in points.chunks_exact(U).zip(&self.wv) {
+            if wv != S::ZERO {
+                sum += point_of(row, |i| self.wu[i]) * wv;
+            }
+        }
+        sum
+    }
+
+    /// A box that holds cell `(cu, cv)` of the surface: its supporting particles' box (every
+    /// particle for one Bézier), grown about its centre by `overshoot`, the most `Σ|w|` of
+    /// the basis reaches. `None` only for an empty grid.
+    pub(super) fn cell_bounds<P: Point<Scalar = S>>(
+        &self,
+        points: &[P],
+        (cu, cv): (usize, usize),
+        overshoot: S,
+    ) -> Option<Aabb<P>> {
+        let support = |c: usize, n: usize| match self.smoothing {
+            Smoothing::Bezier => 0..n,
+            _ => c.saturating_sub(1)..(c + 3).min(n),
+        };
+        let mut hull: Option<Aabb<P>> = None;
+        for j in support(cv, V) {
+            for &p in &points[j * U..][support(cu, U)] {
+                hull = Some(hull.map_or(Aabb::point(p), |b| b.including(p)));
+            }
+        }
+        let hull = hull?;
+        let centre = hull.min.midpoint(hull.max);
+        let half = (hull.max - centre) * overshoot;
+        Some(Aabb {
+            min: centre - half,
+            max: centre + half,
+        })
+    }
+}
+
+/// Span and parameter along one grid direction of `n` particles for cell `cell` at `t`: one
+/// Bézier spans the whole direction, the other smoothings have a span per cell.
+pub(super) fn locate<S: Scalar>(smoothing: Smoothing, cell: usize, t: S, n: usize) -> (usize, S) {
+    match smoothing {
+        Smoothing::Bezier => (
+            0,
+            (S::from_i16(cell as i16) + t) * S::ratio(1, (n - 1) as u32),
+        ),
+        _ => (cell, t),
+    }
+}
+
+/// The `(u, v)` in `[0, 1]²` of a cell where `key` (of a point: the point and its search
+/// key) is least: the best of 3×3 samples, then 8 rounds of a compass search whose step halves
+/// from 1/4 (its last step 1/512 of the cell). `None`, without the search, unless
+/// `near(best sample, the longest distance between neighbouring samples)`: every point of a
+/// cell lies that close to a sample unless the cell folds between them.
+pub(super) fn deepest_in_cell<P: Point>(
+    mut key: impl FnMut(P::Scalar, P::Scalar) -> (P, P::Scalar),
+    near: impl Fn(P, P::Scalar) -> bool,
+) -> Option<(P::Scalar, P::Scalar)> {
+    let (zero, half) = (P::Scalar::ZERO, P::Scalar::ratio(1, 2));
+    let mut samples = [(P::default(), zero); 9];
+    let at = |k: usize| {
+        (
+            P::Scalar::ratio(k as u32 % 3, 2),
+            P::Scalar::ratio(k as u32 / 3, 2),
+        )
+    };
+    for (k, sample) in samples.iter_mut().enumerate() {
+        *sample = key(at(k).0, at(k).1);
+    }
+    let (mut best, mut nearest, mut spacing) = ((zero, zero, samples[0].1), samples[0].0, zero);
+    for (k, &(x, d)) in samples.iter().enumerate() {
+        if d < best.2 {
+            (best, nearest) = ((at(k).0, at(k).1, d), x);
+        }
+        // The neighbours to the right (same row) and above.
+        for next in [k + 1, k + 3] {
+            if next < 9 && (next == k + 3 || k % 3 < 2) {
+                spacing = spacing.max((samples[next].0 - x).length());
+            }
+        }
+    }
+    if !near(nearest, spacing) {
+        return None;
+    }
+    let mut step = P::Scalar::ratio(1, 4);
+    for _ in 0..8 {
+        let (u, v, _) = best;
+        for (du, dv) in [(step, zero), (-step, zero), (zero, step), (zero, -step)] {
+            let (nu, nv) = (
+                crate::curves::curve::clamp_unit(u + du),
+                crate::curves::curve::clamp_unit(v + dv),
+            );
+            let d = key(nu, nv).1;
+            if d < best.2 {
+                best = (nu, nv, d);
+            }
+        }
+        step = step * half;
+    }
+    Some((best.0, best.1))
+}
