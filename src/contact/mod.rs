@@ -157,12 +157,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// is within 1/256 of the diameter of another. A step with self-contact takes substeps for
     /// twice the particles' top speed (two parts of the rope can meet head on).
     ///
-    /// Measured (`tests/suite/contacts.rs`, `docs/summary.md` section (g)): a 16-particle 3D
+    /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
+    /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D
     /// rope falling into a pile on a floor never has two spans closer than the diameter less
     /// 1% over 10 s (0.96% at the closest); lying straight on the floor, self-contact adds
-    /// 0.9× the rope's step to a frame; settled in a pile, where 10 to 30 pairs of spans touch,
-    /// about 2 000× (1.4 to 2.7 ms a frame on the development machine): a heap of rope is
-    /// costly, keep its particles few.
+    /// 0.9 to 1.5 times the rope's step to a frame (three runs); settled in a pile, where 10
+    /// to 30 pairs of spans touch, 1 800 to 3 500 times (1.4 to 2.8 ms a frame on the
+    /// development machine): a heap of rope is costly, keep its particles few.
     ///
     /// ```
     /// use dunas::prelude::*;
