@@ -137,10 +137,11 @@ impl Catapult {
             .move_pinned(0, Self::hand(self.time), STEP)
             .expect("the hand stays in range");
         // The whirled rope cannot reach the snow; a cut piece falls on it (the contacts' extra
-        // substeps are paid only then).
+        // substeps are paid only then). The snow is wide: its particles touch it, and the
+        // browser page links no curve contacts.
         let info = if self.pieces() > 1 {
             let snow = Contacts::new(&self.snow, THICKNESS, Touch::Particles).expect("valid");
-            self.rope.step_touching(STEP, (), &snow)
+            self.rope.step_touching_particles(STEP, (), &snow)
         } else {
             self.rope.step(STEP)
         }
