@@ -9,8 +9,7 @@ impl<P: Point> Contacts<'_, P> {
     /// loop) at least twice the thickness apart, when self-contact is on. Broad phase: each
     /// span's control-point box (it holds the span) grown by the thickness, sorted along the
     /// first axis and swept, so only spans whose boxes overlap are compared. Narrow phase:
-    /// the nearest points of the two spans, by [`deepest_in_cell`] over their two
-    /// parameters; the pair is pushed apart along the line between them, through both spans'
+    /// the nearest points of the two spans ([`nearest`]); the pair is pushed apart along the line between them, through both spans'
     /// particle weights (a particle both spans share moves by the difference), with its
     /// approach stopped and its sliding braked by Coulomb friction. Returns the deepest
     /// overlap it found, or `None` when the redrawn curve left the range (the step's guard
@@ -35,7 +34,8 @@ impl<P: Point> Contacts<'_, P> {
             *o = span;
         }
         let low = |b: &Aabb<P>| b.min.coord(0);
-        // Insertion sort: few spans, and nearly sorted from frame to frame.
+        // Insertion sort: few spans, and a rope's spans in their own order are often nearly
+        // sorted along x already.
         for i in 1..n {
             let mut j = i;
             while j > 0 && low(&boxes[order[j - 1]]) > low(&boxes[order[j]]) {
