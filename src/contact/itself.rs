@@ -124,10 +124,10 @@ impl<P: Point> Contacts<'_, P> {
 /// The parameters `(u, v)` in `[0, 1]²` of the nearest points of two spans, `a(u)` and
 /// `b(v)`. Each span is cut into [`CHORDS`] chords; the [`SEEDS`] chord pairs nearest each
 /// other (measured exactly, segment to segment: two spans that cross have chords that nearly
-/// cross) seed a
-/// pattern search in 8 directions from a step of 1/16 down to 1/4096 of a span (at most
-/// [`SEARCH_ROUNDS`] rounds); the nearest result wins. `None`, without the search, when no chord pair comes within `gap` plus the
-/// longest chord: the spans are apart.
+/// cross) seed [`NEWTON_STEPS`] Gauss-Newton steps, then a pattern search in 8 directions
+/// from a step of 1/64 down to 1/4096 of a span (at most [`SEARCH_ROUNDS`] rounds); the
+/// nearest result wins. `None`, without the search, when no chord pair comes within `gap`
+/// plus half the longest chord: the spans are apart.
 fn nearest<P: Point>(
     a: impl Fn(P::Scalar) -> P,
     b: impl Fn(P::Scalar) -> P,
