@@ -12,7 +12,8 @@ import path from 'node:path';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.dirname(here);
-const targetDir = process.env.CARGO_TARGET_DIR
+/** Cargo's target directory ($CARGO_TARGET_DIR, or target/). */
+export const targetDir = process.env.CARGO_TARGET_DIR
   ? path.resolve(repo, process.env.CARGO_TARGET_DIR)
   : path.join(repo, 'target');
 /** Where cargo writes the page's module. */

@@ -11,9 +11,9 @@
 import { statSync, mkdirSync } from 'node:fs';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
-import { build, serve, wasmPath } from './serve.mjs';
+import { build, serve, targetDir, wasmPath } from './serve.mjs';
 
-const out = path.join(path.dirname(path.dirname(wasmPath)), '..', 'web');
+const out = path.join(targetDir, 'web');
 mkdirSync(out, { recursive: true });
 const failures = [];
 function check(ok, what) {

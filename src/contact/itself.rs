@@ -1,7 +1,7 @@
 //! Self-contact: a rope's drawn curve kept off itself ([`Contacts::with_self_contact`]).
 
 use super::Contacts;
-use super::drawn::{DrawnSpans, point_inv_mass, point_of, spread};
+use super::drawn::{DrawnSpans, point_of, spread};
 use crate::{Aabb, Point, Scalar};
 
 impl<P: Point> Contacts<'_, P> {
@@ -98,9 +98,6 @@ impl<P: Point> Contacts<'_, P> {
         curve.weights(a, u, &mut wa);
         curve.weights(b, v, &mut wb);
         let g = |i: usize| wa[i] - wb[i];
-        if point_inv_mass(inv_mass, g).is_none() {
-            return Some(zero);
-        }
         let relative = point_of(vel, g);
         let vn = relative.dot(normal);
         let mut dx = normal * (gap - dist);
@@ -116,7 +113,10 @@ impl<P: Point> Contacts<'_, P> {
             };
             (dx, dv) = (dx - brake * h, normal * push - brake);
         }
-        let _ = spread(pos, vel, inv_mass, g, (dx, dv));
+        // `None`: no free particle moves the pair (both spans held), nothing to undo.
+        if spread(pos, vel, inv_mass, g, (dx, dv)).is_none() {
+            return Some(zero);
+        }
         curve.rebuild(pos).then_some(gap - dist)
     }
 }

@@ -161,9 +161,9 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D
     /// rope falling into a pile on a floor never has two spans closer than the diameter less
     /// 1% over 10 s (0.96% at the closest); lying straight on the floor, self-contact adds
-    /// 0.9 to 1.5 times the rope's step to a frame (three runs); settled in a pile, where 10
-    /// to 30 pairs of spans touch, 1 800 to 3 500 times (1.4 to 2.8 ms a frame on the
-    /// development machine): a heap of rope is costly, keep its particles few.
+    /// 0.9 to 1.5 times the rope's step to a frame (three runs); settled in a pile, where
+    /// about 40 pairs of spans are near each other, 3 400 to 3 500 times (2.7 to 2.8 ms a
+    /// frame on the development machine): a heap of rope is costly, keep its particles few.
     ///
     /// ```
     /// use dunas::prelude::*;

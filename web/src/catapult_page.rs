@@ -20,6 +20,8 @@ const HAND_RADIUS: f32 = 0.1;
 pub struct CatapultPage {
     pub game: Catapult,
     pub view: View,
+    /// The canvas width (pixels).
+    width: f32,
 }
 
 impl CatapultPage {
@@ -27,6 +29,7 @@ impl CatapultPage {
         CatapultPage {
             game: Catapult::played(),
             view: View::fit(WORLD_MIN, WORLD_MAX, width, height),
+            width,
         }
     }
 
@@ -59,11 +62,8 @@ impl CatapultPage {
     pub fn draw(&self, list: &mut DrawList) {
         let view = &self.view;
         let px = |p: Vec2<f32>| view.pixel(p);
-        let left = view.world(0.0, 0.0).x;
-        let right = view.world(1e5, 0.0).x.min(1e4);
-        let [x0, snow] = px(Vec2::new(left, GROUND));
-        let [x1, _] = px(Vec2::new(right, GROUND));
-        list.push(Style::Snow, &[x0, snow, x1, snow]);
+        let [_, snow] = px(Vec2::new(0.0, GROUND));
+        list.push(Style::Snow, &[0.0, snow, self.width, snow]);
         if let Some(x) = self.arc_x() {
             list.push(Style::Target, &px(Vec2::new(x, GROUND)));
         }

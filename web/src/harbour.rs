@@ -21,7 +21,8 @@ pub struct Harbour {
     table: SurfaceTable<f32, 8, DRAWN>,
     size: [f32; 2],
     time: f32,
-    /// Frames whose step hit the substep cap (none is expected: one solve a frame).
+    /// Sail steps that hit the substep cap or were refused (none is expected: one solve a
+    /// frame).
     pub slow_frames: u32,
     /// A sail's drawn points and normals, and a frame's triangles with their depths (reused).
     points: [Vec3<f32>; DRAWN * DRAWN],
