@@ -6,8 +6,8 @@
 //! Cortex-M0 and in f32 on a Cortex-M4F.
 //!
 //! It prints what `mcu_rope` prints, plus `stretch_permille=`, the rope's largest stretch
-//! over the run in thousandths (measured after each frame's curve, and counted in its
-//! `sample_instructions`):
+//! over the run in thousandths (measured after each frame, outside the metered step and
+//! curve):
 //!
 //! `cargo run --release --target thumbv6m-none-eabi --example mcu_catapult` (Q16.16, micro:bit)
 //! `cargo run --release --example mcu_catapult` (Q16.16 on the host) or `... -- f32`.
@@ -47,18 +47,17 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let length = px(70);
     let mut scene = (rope, [Vec2::new(S::ZERO, S::ZERO); device::CURVE], S::ZERO);
     let dt = S::ratio(1, 60);
-    let costs = device::meter_frames(
+    let costs = device::meter_frames_checked(
         meter,
         &mut scene,
         |(rope, _, _)| rope.step(dt),
-        |(rope, curve, largest)| {
-            rope.sample(Smoothing::CatmullRom, curve)?;
+        |(rope, curve, _)| rope.sample(Smoothing::CatmullRom, curve).map(drop),
+        |(rope, _, largest)| {
             let chain = rope
                 .positions()
                 .windows(2)
                 .fold(S::ZERO, |sum, pair| sum + (pair[1] - pair[0]).length());
             *largest = (*largest).max(chain / length - S::ONE);
-            Ok(())
         },
     )?;
     let (rope, curve, largest) = scene;

@@ -124,8 +124,20 @@ impl Costs {
 pub fn meter_frames<T, S: Scalar>(
     meter: &mut impl Meter,
     scene: &mut T,
+    step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
+    sample: impl FnMut(&mut T) -> Result<(), Error>,
+) -> Result<Costs, Error> {
+    meter_frames_checked(meter, scene, step, sample, |_| {})
+}
+
+/// As [`meter_frames`], with `check` run after each frame and not metered: what the example
+/// measures of the scene, not what a game would run.
+pub fn meter_frames_checked<T, S: Scalar>(
+    meter: &mut impl Meter,
+    scene: &mut T,
     mut step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
     mut sample: impl FnMut(&mut T) -> Result<(), Error>,
+    mut check: impl FnMut(&mut T),
 ) -> Result<Costs, Error> {
     let mut costs = Costs {
         step: 0,
@@ -141,6 +153,7 @@ pub fn meter_frames<T, S: Scalar>(
         let (sampled, m) = meter.count(|| sample(scene));
         costs.substeps = stepped?.substeps;
         sampled?;
+        check(scene);
         total += u64::from(n + m);
         let costliest = costs.step + costs.sample;
         if n + m > costliest {

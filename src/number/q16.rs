@@ -244,29 +244,99 @@ impl Mul for Q16 {
 
 impl Div for Q16 {
     type Output = Q16;
-    /// 64-bit quotient, rounded to nearest, saturated; `x / 0` saturates by the sign of `x`.
+    /// Quotient rounded to nearest (ties away from zero), saturated; `x / 0` saturates by the
+    /// sign of `x`. A 64-bit division where the core has one, a 32-bit long division
+    /// elsewhere; the results are identical bit for bit.
     #[inline]
     fn div(self, rhs: Q16) -> Q16 {
-        let (a, b) = (self.to_bits() as i64, rhs.to_bits() as i64);
-        if b == 0 {
-            return match a.signum() {
-                1 => Q16::MAX,
-                -1 => Q16::MIN,
-                _ => Q16::from_bits(0),
-            };
+        #[cfg(target_pointer_width = "64")]
+        {
+            div_wide(self.to_bits(), rhs.to_bits())
         }
-        let num = a << 16;
-        let q = num / b;
-        // One 64-bit division only: the remainder by a multiply (cheap where division is a
-        // library call, as on a Cortex-M0).
-        let r = num - q * b;
-        // Round half away from zero.
-        let q = if 2 * r.abs() >= b.abs() {
-            q + if (num < 0) == (b < 0) { 1 } else { -1 }
-        } else {
-            q
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            div_long(self.to_bits(), rhs.to_bits())
+        }
+    }
+}
+
+/// `round(a·2¹⁶ / b)` (half away from zero), saturated: the exact 64-bit form.
+#[cfg(any(test, target_pointer_width = "64"))]
+#[inline]
+pub(crate) fn div_wide(a: i32, b: i32) -> Q16 {
+    let (a, b) = (a as i64, b as i64);
+    if b == 0 {
+        return match a.signum() {
+            1 => Q16::MAX,
+            -1 => Q16::MIN,
+            _ => Q16::from_bits(0),
         };
-        Q16::saturate(q)
+    }
+    let num = a << 16;
+    let q = num / b;
+    let r = num - q * b;
+    // Round half away from zero.
+    let q = if 2 * r.abs() >= b.abs() {
+        q + if (num < 0) == (b < 0) { 1 } else { -1 }
+    } else {
+        q
+    };
+    Q16::saturate(q)
+}
+
+/// The same quotient by binary long division in 32-bit registers, one quotient bit a turn
+/// and only as many turns as the quotient has bits (17 for `1 / 10`): about 9 instructions
+/// a bit on a Cortex-M0, which has no divider and would call a ~550-instruction library
+/// routine for the 64-bit form. Bit-identical to [`div_wide`] (tested on edge cases and
+/// 600 000 random pairs).
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[inline(never)]
+pub(crate) fn div_long(a: i32, b: i32) -> Q16 {
+    let negative = (a < 0) != (b < 0);
+    let (big_a, big_b) = (a.unsigned_abs(), b.unsigned_abs());
+    let saturated = if negative { Q16::MIN } else { Q16::MAX };
+    if big_b == 0 {
+        return if a == 0 { Q16::from_bits(0) } else { saturated };
+    }
+    // `|a|·2¹⁶ / |b| ≥ 2³²`: past every `Q16`.
+    if big_a >> 16 >= big_b {
+        return saturated;
+    }
+    // The dividend `d = |a|·2¹⁶` (48 bits). `turns` bounds the quotient's bit count, so that
+    // the remainder starts below `|b|`: `d >> turns < |b|` (32 turns at most, as
+    // `d < |b|·2³²` here).
+    let turns = (width(big_a) + 17)
+        .saturating_sub(width(big_b))
+        .clamp(1, 32);
+    // `rem` holds `d >> turns` and `feed` the `turns` bits below it at its top; each turn
+    // moves one bit from `feed`'s top into `rem` and one quotient bit into `feed`'s freed
+    // bottom. `rem < |b| ≤ 2³¹`, so `rem << 1` fits.
+    let (rem, feed) = if turns >= 16 {
+        (
+            big_a >> (turns - 16),
+            big_a.checked_shl(48 - turns).unwrap_or(0),
+        )
+    } else {
+        (big_a << (16 - turns), 0)
+    };
+    let mut pair = (u64::from(rem) << 32) | u64::from(feed);
+    for _ in 0..turns {
+        pair <<= 1;
+        if (pair >> 32) as u32 >= big_b {
+            pair = (pair - (u64::from(big_b) << 32)) | 1;
+        }
+    }
+    let (rem, feed) = ((pair >> 32) as u32, pair as u32);
+    // Round half away from zero (`2·rem < 2³²`), then the sign, saturated.
+    let magnitude = u64::from(feed) + u64::from(rem << 1 >= big_b);
+    if negative {
+        if magnitude > 1 << 31 {
+            Q16::MIN
+        } else {
+            Q16::from_bits((magnitude as i64).wrapping_neg() as i32)
+        }
+    } else {
+        Q16::from_bits(magnitude.min(i32::MAX as u64) as i32)
     }
 }
 
@@ -296,26 +366,55 @@ fn square(r: u32) -> u64 {
     (hh << 32) + (hl << 17) + ll
 }
 
-/// `floor(sqrt(n))` digit by digit: shifts, adds and compares only, about 16 instructions per
-/// result bit on a Cortex-M0 (half the cost of `u64::isqrt` there, which divides). Equal to
-/// `u64::isqrt` for every input (tested).
+/// The bit width of `x` (0 for 0): five compares, where `leading_zeros` is a library call
+/// on a Cortex-M0.
+#[inline]
+fn width(x: u32) -> u32 {
+    let (x, n) = if x >> 16 != 0 { (x >> 16, 16) } else { (x, 0) };
+    let (x, n) = if x >> 8 != 0 { (x >> 8, n + 8) } else { (x, n) };
+    let (x, n) = if x >> 4 != 0 { (x >> 4, n + 4) } else { (x, n) };
+    let (x, n) = if x >> 2 != 0 { (x >> 2, n + 2) } else { (x, n) };
+    n + if x >= 2 { 2 } else { x }
+}
+
+/// `floor(sqrt(n))`: `n` scaled by a power of four into `[2⁶², 2⁶⁴)`, a root from
+/// [`inv_sqrt_unit`] (15 bits), one Newton step through the same inverse (about 29 bits),
+/// scaled back and made exact by comparing squares. 32-bit multiplies only: about 200
+/// instructions on a Cortex-M0, a third of digit-by-digit's. Equal to `u64::isqrt` for
+/// every input (tested).
 fn isqrt(n: u64) -> u64 {
     if n == 0 {
         return 0;
     }
-    // The highest power of four not above n.
-    let mut bit = 1u64 << ((63 - n.leading_zeros()) & !1);
-    let (mut rem, mut root) = (n, 0u64);
-    while bit != 0 {
-        if rem >= root + bit {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
+    let high = (n >> 32) as u32;
+    let bits = if high != 0 {
+        32 + width(high)
+    } else {
+        width(n as u32)
+    };
+    let shift = (64 - bits) & !1;
+    let m = n << shift;
+    // `√m ≈ t·z / 2¹⁵` with `t` the top half of `m` and `z ≈ 2¹⁶ / √(t / 2³⁰)`: within
+    // `2⁻¹⁴` relative. Each product fits 32 bits (`z ≤ 2¹⁶`, `t >> 16 < 2¹⁶`).
+    let t = (m >> 32) as u32;
+    let z = inv_sqrt_unit(t);
+    let wide = (u64::from((t >> 16) * z) << 16) + u64::from((t & 0xffff) * z);
+    let r0 = (wide >> 15).min(u64::from(u32::MAX)) as u32;
+    // Newton: `r1 = r0 + (m − r0²) / (2√m)`, with `1 / (2√m) ≈ z / 2⁴⁸`. `|m − r0²| < 2⁵¹`,
+    // so `e = (m − r0²) / 2²⁰` fits 32 bits; `e·z` is summed from its 16-bit halves.
+    let e = (m.wrapping_sub(square(r0)) as i64 >> 20) as i32;
+    let (eh, el) = (e >> 16, (e & 0xffff) as u32);
+    let step = ((eh * z as i32) >> 12) + ((el * z) >> 28) as i32;
+    let r1 = (i64::from(r0) + i64::from(step)).clamp(0, i64::from(u32::MAX)) as u64;
+    // Back to `n`'s scale; a few units off at most (none for most inputs): made exact.
+    let mut root = (r1 >> (shift / 2)) as u32;
+    while square(root) > n {
+        root -= 1;
     }
-    root
+    while root < u32::MAX && square(root + 1) <= n {
+        root += 1;
+    }
+    u64::from(root)
 }
 
 /// `1/√u` at the middle of each eighth of `u ∈ [1, 4)`, in units of 2⁻¹⁶: the first guess of
@@ -342,8 +441,21 @@ fn inv_sqrt_bits(x: u32) -> u32 {
             k += shift / 2;
         }
     }
-    // `u = m / 2³⁰` in its 16-bit halves, `z ≈ 1/√u ∈ (½, 1]` in 16 fractional bits: every
-    // product fits 32 bits.
+    let z = inv_sqrt_unit(m);
+    // `1/√x = z · 2^(k−7)` in 16 fractional bits.
+    if k >= 7 {
+        z << (k - 7)
+    } else {
+        let s = 7 - k;
+        (z + (1 << (s - 1))) >> s
+    }
+}
+
+/// `z ≈ 2¹⁶ / √u` for `u = m / 2³⁰ ∈ [1, 4)` (`m ≥ 2³⁰`), in `(2¹⁵, 2¹⁶]`: a guess from
+/// [`INV_SQRT_GUESS`] and two Newton steps, within about `2⁻¹⁵` relative.
+#[inline]
+fn inv_sqrt_unit(m: u32) -> u32 {
+    // `u` in its 16-bit halves, `z` in 16 fractional bits: every product fits 32 bits.
     let (high, low) = (m >> 16, m & 0xffff);
     // `m >> 27` is 8..=31 for any `x > 0`; the clamp only spares a bounds check.
     let mut z = INV_SQRT_GUESS[(m >> 27).saturating_sub(8).min(23) as usize];
@@ -360,13 +472,7 @@ fn inv_sqrt_bits(x: u32) -> u32 {
         let e = ((1u32 << 30) as i32).wrapping_sub(uz2 as i32);
         z = (z as i32 + ((z as i32 * (e >> 12) + (1 << 18)) >> 19)) as u32;
     }
-    // `1/√x = z · 2^(k−7)` in 16 fractional bits.
-    if k >= 7 {
-        z << (k - 7)
-    } else {
-        let s = 7 - k;
-        (z + (1 << (s - 1))) >> s
-    }
+    z
 }
 
 /// Logged as its value (`defmt`'s `f32` formatting: 24 bits, exact for every `Q16` below 256).
@@ -598,7 +704,7 @@ mod tests {
     }
 
     #[test]
-    fn digit_by_digit_isqrt_matches_core() {
+    fn isqrt_matches_core() {
         for n in (0u64..5000).chain([u64::MAX, u64::MAX - 1, 1 << 62, (1 << 62) - 1, 3 << 62]) {
             assert_eq!(isqrt(n), n.isqrt(), "{n}");
         }
@@ -648,6 +754,53 @@ mod tests {
         assert_eq!(Q16::ZERO.inv_sqrt(), Q16::ZERO);
         assert_eq!(Q16::from_i16(-3).inv_sqrt(), Q16::ZERO);
         std::println!("worst {worst_rel:e} relative, {worst_ulp} ulp");
+    }
+
+    #[test]
+    fn long_division_matches_the_wide_one() {
+        let edges = [
+            0,
+            1,
+            -1,
+            2,
+            3,
+            0xffff,
+            0x1_0000,
+            0x1_0001,
+            0x7fff_ffff,
+            i32::MIN,
+            i32::MIN + 1,
+            0x4000_0000,
+            -0x4000_0000,
+            0x8000,
+            -0x8000,
+            12345,
+            -98765,
+            // Ties: `1 / 2¹⁷`, `3 / (3·2¹⁷)`, `5 / 2¹⁷`.
+            0x2_0000,
+            0x6_0000,
+            5,
+            -0x2_0000,
+        ];
+        for &a in &edges {
+            for &b in &edges {
+                assert_eq!(div_long(a, b), div_wide(a, b), "{a} / {b}");
+            }
+        }
+        // Random pairs over every magnitude: raw bits shifted by a random amount.
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..600_000 {
+            let r = next();
+            let a = (r as i32) >> ((r >> 32) % 32);
+            let b = ((r >> 32) as i32) >> ((r >> 40) % 32);
+            assert_eq!(div_long(a, b), div_wide(a, b), "{a} / {b}");
+        }
     }
 
     #[test]

@@ -43,7 +43,7 @@ use crate::{Point, Scalar};
 /// Cost: per iteration, a square root, a division and about 30 multiply-adds a link; the
 /// same at every stiffness (within 1.04× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)),
 /// 1.4 times symplectic Euler's frame on the catapult rope's own soft springs. On a
-/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 42 730 instructions a
+/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 30 695 instructions a
 /// step for 8 particles (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
