@@ -18,13 +18,15 @@
 mod boats;
 #[path = "common/raster.rs"]
 mod raster;
+#[path = "common/sea.rs"]
+mod sea;
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use boats::{
-    Boat, CANVAS, Camera, MAST, SEA, SKY, SPARS, arr, fleet, fleet_camera, fleet_view, hull, sail,
-    shade,
+    Boat, CANVAS, Camera, DEPTH_PER_METRE, MAST, SEA, SKY, SPARS, arr, fleet, fleet_camera,
+    fleet_view, hull, sail, shade,
 };
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
@@ -32,6 +34,7 @@ use dunas::integrator::{DirectSprings, SymplecticEuler};
 use dunas::surface::SurfaceTable;
 use dunas::{Smoothing, Vec3, lod};
 use raster::Image;
+use sea::{Harbour, riding};
 
 const STEP: f32 = 1.0 / 60.0;
 const STEPS_PER_FRAME: usize = 15;
@@ -91,8 +94,9 @@ fn parse_args() -> Result<Args, String> {
 }
 
 /// The sky, the sea below the horizon at `horizon` (pixels from the top), darker towards the
-/// viewer, with swell lines that move with time `t`.
-fn seascape(w: usize, h: usize, horizon: f32, t: f32) -> Image {
+/// viewer, with painted swell lines that move with time `t` (none when `t` is `None`: the
+/// simulated sea is drawn over it).
+fn seascape(w: usize, h: usize, horizon: f32, t: Option<f32>) -> Image {
     let mut img = Image::new(w, h, SKY);
     for y in horizon.max(0.0) as usize..h {
         let near = (y as f32 - horizon) / (h as f32 - horizon).max(1.0);
@@ -101,7 +105,8 @@ fn seascape(w: usize, h: usize, horizon: f32, t: f32) -> Image {
         img.line([0.0, y as f32], [w as f32, y as f32], c);
     }
     // Swell: crests that bunch up towards the horizon.
-    for n in 1..14 {
+    for n in (1..14).take_while(|_| t.is_some()) {
+        let t = t.unwrap_or_default();
         let d = n as f32 + (t * 0.4).fract();
         let y = horizon + (h as f32 - horizon) * (1.0 - 1.0 / (0.35 * d + 1.0)) * 1.25;
         let amp = 1.0 + 0.35 * d;
@@ -132,7 +137,7 @@ fn draw_boat(img: &mut Image, cam: &Camera) {
         let (a, b) = (cam.project(a), cam.project(b));
         let width = (cam.scale / 40.0).clamp(0.0, 2.0) as i32;
         for dx in -width..=width {
-            let shift = |p: [f32; 3]| [p[0] + dx as f32, p[1], p[2] - 0.01];
+            let shift = |p: [f32; 3]| [p[0] + dx as f32, p[1], p[2] - 0.01 * DEPTH_PER_METRE];
             img.line_3d(shift(a), shift(b), MAST);
         }
     }
@@ -192,11 +197,12 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
 /// A sail's drawn points and normals, and its counts a direction.
 type Drawn = (Vec<Vec3<f32>>, Vec<Vec3<f32>>, usize, usize);
 
-/// The fleet on the sea in a `w × h` image, each boat with its drawn sail.
-fn draw_fleet(w: usize, h: usize, boats: &[Boat], drawn: &[Drawn], time: f32) -> Image {
-    let mut img = seascape(w, h, fleet_view(h).0, time);
-    for (boat, (p, n, nu, nv)) in boats.iter().zip(drawn) {
-        let cam = fleet_camera(w, h, boat.at, boat.yaw);
+/// The fleet on its sea in a `w × h` image, each boat riding the waves with its drawn sail.
+fn draw_fleet(w: usize, h: usize, boats: &[Boat], drawn: &[Drawn], harbour: &Harbour) -> Image {
+    let mut img = seascape(w, h, fleet_view(h).0, None);
+    harbour.draw(&mut img);
+    for (k, (boat, (p, n, nu, nv))) in boats.iter().zip(drawn).enumerate() {
+        let cam = riding(fleet_camera(w, h, boat.at, boat.yaw), harbour.lift(k));
         draw_boat(&mut img, &cam);
         draw_sail(&mut img, &cam, (p, n), (*nu, *nv), true);
     }
@@ -233,6 +239,10 @@ fn main() {
     let table = |n: usize| &tables[n - 2];
     let full = table(DRAWN);
     let mut boats = fleet(args.boats);
+    let mut harbour = Harbour::new(&boats).unwrap_or_else(|e| {
+        eprintln!("cloth: {e}");
+        std::process::exit(2);
+    });
     let (mut pos, mut nor) = (
         vec![Vec3::default(); DRAWN * DRAWN],
         vec![Vec3::default(); DRAWN * DRAWN],
@@ -243,9 +253,10 @@ fn main() {
         scale: h as f32 / 8.0,
         center: [w as f32 * if left { 0.22 } else { 0.68 }, h as f32 * 0.72],
         depth: 0.0,
+        lift: [0.0; 3],
     };
     println!(
-        "frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of {}: a step + surfaces (ms) | mean samples a sail | raster (ms)",
+        "frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of {}: a step + surfaces (ms) | mean samples a sail | the sea's step (ms) | raster (ms)",
         args.boats
     );
     let mut last = Vec::new();
@@ -274,7 +285,7 @@ fn main() {
         let big_nor = grid_normals::<20, 20>(big.positions());
         let mut pair = Vec::new();
         for shaded in [false, true] {
-            let mut img = seascape(w, h, h as f32 * 0.3, time);
+            let mut img = seascape(w, h, h as f32 * 0.3, Some(time));
             for (left, grid, normals, n) in [
                 (true, &pos[..], &nor[..], DRAWN),
                 (false, big.positions(), &big_nor[..], 20),
@@ -322,19 +333,24 @@ fn main() {
         }
         let fleet_ms = (stepping / STEPS_PER_FRAME as f64 + drawing) * 1e3;
         let t = Instant::now();
-        let img = draw_fleet(w, h, &boats, &drawn, time);
+        for _ in 0..STEPS_PER_FRAME {
+            harbour.step(STEP).expect("the sea stays stable");
+        }
+        let sea_ms = t.elapsed().as_secs_f64() * 1e3 / STEPS_PER_FRAME as f64;
+        let t = Instant::now();
+        let img = draw_fleet(w, h, &boats, &drawn, &harbour);
         let raster_ms = t.elapsed().as_secs_f64() * 1e3;
         let path = args.out.join(format!("fleet_{frame:03}.ppm"));
         img.write_ppm(&path)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
         let per = |s: f64| s * 1e6 / STEPS_PER_FRAME as f64;
         println!(
-            "{frame:5} | {:21.1} | {:15.1} | {fleet_ms:35.2} | {:19.0} | {raster_ms:.1}",
+            "{frame:5} | {:21.1} | {:15.1} | {fleet_ms:35.2} | {:19.0} | {sea_ms:23.3} | {raster_ms:.1}",
             per(t_small),
             per(t_big),
             samples as f64 / boats.len() as f64,
         );
-        pair.push(draw_fleet(2 * w, h, &boats, &drawn, time));
+        pair.push(draw_fleet(2 * w, h, &boats, &drawn, &harbour));
         last = pair;
     }
     if slow > 0 {

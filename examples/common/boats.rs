@@ -141,9 +141,14 @@ pub fn fleet_camera(w: usize, h: usize, at: [f32; 2], yaw: f32) -> Camera {
         pitch: 0.12,
         scale,
         center: [w as f32 / 2.0 + at[0] * scale, horizon + eye_height * scale],
-        depth: at[1] * 100.0,
+        depth: at[1] * DEPTH_PER_METRE,
+        lift: [0.0; 3],
     }
 }
+
+/// Depth units a metre: every camera's depths, so that objects drawn with cameras of their
+/// own and the sea drawn in world space share one depth buffer.
+pub const DEPTH_PER_METRE: f32 = 100.0;
 
 /// An orthographic camera turned by `yaw` about the vertical axis and tilted by `pitch`,
 /// mapping world units to pixels with `scale` around the image point `center`.
@@ -154,6 +159,9 @@ pub struct Camera {
     pub center: [f32; 2],
     /// Added to every depth: orders the objects of a scene drawn with a camera each.
     pub depth: f32,
+    /// How the object rides a sea: its heave (metres up) and the surface's slopes across
+    /// and along under it, which shear its points up where the sea is higher.
+    pub lift: [f32; 3],
 }
 
 impl Camera {
@@ -163,12 +171,14 @@ impl Camera {
         let (sp, cp) = self.pitch.sin_cos();
         let x = cy * p[0] + sy * p[2];
         let z = -sy * p[0] + cy * p[2];
-        let y = cp * p[1] - sp * z;
-        let depth = sp * p[1] + cp * z;
+        let [heave, across, along] = self.lift;
+        let up = p[1] + heave + across * x + along * z;
+        let y = cp * up - sp * z;
+        let depth = sp * up + cp * z;
         [
             self.center[0] + self.scale * x,
             self.center[1] - self.scale * y,
-            depth + self.depth,
+            depth * DEPTH_PER_METRE + self.depth,
         ]
     }
 

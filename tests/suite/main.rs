@@ -26,6 +26,7 @@ mod properties;
 mod regressions;
 mod rope;
 mod samplers;
+mod sea;
 mod snapshots;
 mod soak;
 mod spline_rope;

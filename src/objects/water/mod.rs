@@ -1,5 +1,10 @@
-//! Water a 2D game's boats ride: a row of columns whose heights carry waves, and bodies that
-//! float on it by buoyancy and make waves.
+//! Water boats ride: a row of columns whose heights carry waves for a 2D game ([`Water`]),
+//! a grid of them for a 3D one ([`Sea`]), and bodies that float on them by buoyancy and
+//! make waves.
+
+mod sea;
+
+pub use sea::{Hull, Sea};
 
 use crate::curves::smooth::Smoothed;
 use crate::error::{check_non_negative, check_points, check_positive, invalid};
@@ -145,8 +150,7 @@ impl<S: Scalar, const N: usize> Water<S, N> {
     /// How much of the strip of column `i` (a spacing wide around it) lies within `half` of
     /// `x`.
     fn shared(&self, i: usize, x: S, half: S) -> S {
-        let (c, strip) = (self.column_x(i), self.spacing * S::ratio(1, 2));
-        ((c + strip).min(x + half) - (c - strip).max(x - half)).max(S::ZERO)
+        overlap(self.column_x(i), self.spacing, x, half)
     }
 
     /// The mean height of the surface over `width` around `x` (each column's strip weighted
@@ -234,15 +238,10 @@ impl<S: Scalar, const N: usize> Water<S, N> {
         if dt == S::ZERO {
             return Ok(info);
         }
-        // Substeps keep `c · h / spacing ≤ 0.9`; past 64 of them, each is the longest stable.
+        // Substeps keep `c · h / spacing ≤ 0.9`.
         let rate = self.speed_of_waves / self.spacing;
-        let needed = dt * rate * S::ratio(10, 9);
-        let n = needed.ceil_usize(usize::from(MAX_SUBSTEPS)).max(1);
-        let mut h = dt / S::from_i16(n as i16);
-        if needed > S::from_i16(MAX_SUBSTEPS as i16) {
-            h = S::ratio(9, 10) / rate;
-            info.slow_motion = true;
-        }
+        let (n, h, slow) = plan(dt, rate, (9, 10));
+        info.slow_motion = slow;
         let saved = (self.heights, self.velocities, *bodies);
         for _ in 0..n {
             self.substep(h, rate * rate, gravity, bodies);
@@ -320,5 +319,23 @@ impl<S: Scalar, const N: usize> Water<S, N> {
         let tops: [Vec2<S>; N] =
             core::array::from_fn(|i| Vec2::new(self.column_x(i), self.heights[i]));
         Smoothed::open(smoothing, &tops)?.sample(out)
+    }
+}
+
+/// How much of the strip `width` wide centred on `c` lies within `half` of `x`.
+fn overlap<S: Scalar>(c: S, width: S, x: S, half: S) -> S {
+    let strip = width * S::ratio(1, 2);
+    ((c + strip).min(x + half) - (c - strip).max(x - half)).max(S::ZERO)
+}
+
+/// The substeps of a `dt` that keep `rate · h ≤ num / den`: their count and length, and
+/// whether time slows down (past [`MAX_SUBSTEPS`], each substep is the longest stable one).
+fn plan<S: Scalar>(dt: S, rate: S, (num, den): (u32, u32)) -> (usize, S, bool) {
+    let needed = dt * rate * S::ratio(den, num);
+    let n = needed.ceil_usize(usize::from(MAX_SUBSTEPS)).max(1);
+    if needed > S::from_i16(MAX_SUBSTEPS as i16) {
+        (n, S::ratio(num, den) / rate, true)
+    } else {
+        (n, dt / S::from_i16(n as i16), false)
     }
 }
