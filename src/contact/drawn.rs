@@ -131,9 +131,32 @@ pub(super) struct SurfacePoint<S, const U: usize, const V: usize> {
     pub(super) smoothing: Smoothing,
     pub(super) wu: [S; U],
     pub(super) wv: [S; V],
+    /// The columns and rows whose weights are not zero (all of them for one Bézier or a
+    /// natural spline, 4 for the local bases): the only ones [`point`](Self::point) reads.
+    support: (core::ops::Range<usize>, core::ops::Range<usize>),
+}
+
+/// The indices from the first to the last non-zero weight.
+fn nonzero<S: Scalar>(w: &[S]) -> core::ops::Range<usize> {
+    let first = w.iter().position(|&x| x != S::ZERO).unwrap_or(0);
+    let end = w
+        .iter()
+        .rposition(|&x| x != S::ZERO)
+        .map_or(first, |i| i + 1);
+    first..end
 }
 
 impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
+    /// A point of the surface `smoothing` draws, not yet placed.
+    pub(super) fn new(smoothing: Smoothing) -> Self {
+        SurfacePoint {
+            smoothing,
+            wu: [S::ZERO; U],
+            wv: [S::ZERO; V],
+            support: (0..0, 0..0),
+        }
+    }
+
     /// Moves to `(u, v)` in `[0, 1]²` of cell `(cu, cv)`, the cell between particles
     /// `(cu, cv)` and `(cu + 1, cv + 1)`.
     pub(super) fn at(&mut self, (cu, cv): (usize, usize), (u, v): (S, S)) {
@@ -141,15 +164,21 @@ impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
         let (sv, tv) = locate(self.smoothing, cv, v, V);
         self.smoothing.weights(false, su, tu, &mut self.wu);
         self.smoothing.weights(false, sv, tv, &mut self.wv);
+        self.support = (nonzero(&self.wu), nonzero(&self.wv));
     }
 
-    /// `Σ wu_i wv_j · points[j·U + i]`.
+    /// `Σ wu_i wv_j · points[j·U + i]`, over the weights that are not zero.
     pub(super) fn point<P: Point<Scalar = S>>(&self, points: &[P]) -> P {
+        let (columns, rows) = self.support.clone();
+        let wu = &self.wu[columns.clone()];
         let mut sum = P::default();
-        for (row, &wv) in points.chunks_exact(U).zip(&self.wv) {
-            if wv != S::ZERO {
-                sum += point_of(row, |i| self.wu[i]) * wv;
-            }
+        for (row, &wv) in points
+            .chunks_exact(U)
+            .zip(&self.wv)
+            .take(rows.end)
+            .skip(rows.start)
+        {
+            sum += point_of(&row[columns.clone()], |i| wu[i]) * wv;
         }
         sum
     }

@@ -1,7 +1,9 @@
-//! Self-contact: a rope's drawn curve kept off itself ([`Contacts::with_self_contact`]).
+//! Self-contact: a rope's drawn curve and a cloth's drawn surface kept off themselves
+//! ([`Contacts::with_self_contact`]).
 
 use super::Contacts;
-use super::drawn::{DrawnSpans, point_of, spread};
+use super::drawn::{DrawnSpans, SurfacePoint, point_of, spread};
+use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
 
 impl<P: Point> Contacts<'_, P> {
@@ -33,39 +35,17 @@ impl<P: Point> Contacts<'_, P> {
             *b = curve.span_bounds(span).grown(self.thickness);
             *o = span;
         }
-        let low = |b: &Aabb<P>| b.min.coord(0);
-        // Insertion sort: few spans, and a rope's spans in their own order are often nearly
-        // sorted along x already.
-        for i in 1..n {
-            let mut j = i;
-            while j > 0 && low(&boxes[order[j - 1]]) > low(&boxes[order[j]]) {
-                order.swap(j - 1, j);
-                j -= 1;
-            }
-        }
         let closed = curve.is_closed();
         let mut deepest = zero;
-        for i in 0..n {
-            let a = order[i];
-            for &b in &order[i + 1..n] {
-                if low(&boxes[b]) > boxes[a].max.coord(0) {
-                    break;
-                }
-                let apart = a.abs_diff(b);
-                let apart = if closed { apart.min(n - apart) } else { apart };
-                if apart < 2 || !boxes[a].overlaps(&boxes[b]) {
-                    continue;
-                }
-                deepest = deepest.max(self.push_apart(
-                    pos,
-                    vel,
-                    inv_mass,
-                    (h, friction),
-                    curve,
-                    (a, b),
-                )?);
+        sweep(&boxes[..n], &mut order[..n], |a, b| {
+            let apart = a.abs_diff(b);
+            let apart = if closed { apart.min(n - apart) } else { apart };
+            if apart >= 2 {
+                let depth = self.push_apart(pos, vel, inv_mass, (h, friction), curve, (a, b))?;
+                deepest = deepest.max(depth);
             }
-        }
+            Some(())
+        })?;
         Some(deepest)
     }
 
@@ -98,27 +78,276 @@ impl<P: Point> Contacts<'_, P> {
         curve.weights(a, u, &mut wa);
         curve.weights(b, v, &mut wb);
         let g = |i: usize| wa[i] - wb[i];
-        let relative = point_of(vel, g);
-        let vn = relative.dot(normal);
-        let mut dx = normal * (gap - dist);
-        let mut dv = P::default();
-        if vn < zero {
-            let push = -vn;
-            let slide = relative - normal * vn;
-            let speed = slide.length();
-            let brake = if speed <= friction * push {
-                slide
-            } else {
-                slide * (friction * push / speed)
-            };
-            (dx, dv) = (dx - brake * h, normal * push - brake);
-        }
+        let parted = parting(normal, gap - dist, point_of(vel, g), (friction, h));
         // `None`: no free particle moves the pair (both spans held), nothing to undo.
-        if spread(pos, vel, inv_mass, g, (dx, dv)).is_none() {
+        if spread(pos, vel, inv_mass, g, parted).is_none() {
             return Some(zero);
         }
         curve.rebuild(pos).then_some(gap - dist)
     }
+
+    /// Keeps every two cells of the surface drawn through a `U × V` grid (`pos`, row by row)
+    /// that are not neighbours (sharing no particle row and column both) at least twice the
+    /// thickness apart, when self-contact is on. `smoothing` draws it (`Polyline`: the flat
+    /// quadrilaterals between the particles); `controls` is a natural spline's control net,
+    /// kept up to date. Broad phase: the boxes of the cells' Bézier control points
+    /// ([`cell_boxes`]) grown by the thickness, swept along x. Narrow phase: the nearest points
+    /// of the two cells ([`nearest_on_cells`]), pushed apart through both points' particle
+    /// weights, their approach stopped and their sliding braked. Returns the deepest overlap
+    /// it found.
+    pub(super) fn resolve_self_surface<const U: usize, const V: usize>(
+        &self,
+        (pos, vel, inv_mass): (&mut [P], &mut [P], &[P::Scalar]),
+        h: P::Scalar,
+        smoothing: Smoothing,
+        controls: &mut Option<[[P; U]; V]>,
+    ) -> P::Scalar {
+        let zero = P::Scalar::ZERO;
+        let Some(friction) = self.self_friction else {
+            return zero;
+        };
+        let (columns, cells) = (U - 1, (U - 1) * (V - 1));
+        let cell_at = |c: usize| (c % columns, c / columns);
+        let mut boxes = [[Aabb::point(P::default()); U]; V];
+        let mut order = [[0usize; U]; V];
+        let (boxes, order) = (boxes.as_flattened_mut(), order.as_flattened_mut());
+        if cell_boxes::<P, U, V>(smoothing, pos, boxes).is_none() {
+            // Out of range: the step's guard undoes it.
+            return zero;
+        }
+        for (c, (b, o)) in boxes
+            .iter_mut()
+            .zip(order.iter_mut())
+            .take(cells)
+            .enumerate()
+        {
+            *b = b.grown(self.thickness);
+            *o = c;
+        }
+        let mut at_a = SurfacePoint::<P::Scalar, U, V>::new(smoothing);
+        let mut at_b = SurfacePoint::<P::Scalar, U, V>::new(smoothing);
+        let gap = self.thickness + self.thickness;
+        let mut deepest = zero;
+        let _ = sweep(&boxes[..cells], &mut order[..cells], |a, b| {
+            let ((ua, va), (ub, vb)) = (cell_at(a), cell_at(b));
+            if ua.abs_diff(ub) < 2 && va.abs_diff(vb) < 2 {
+                return Some(());
+            }
+            let found = nearest_on_cells(
+                |u, v| {
+                    at_a.at((ua, va), (u, v));
+                    at_a.point(pos)
+                },
+                |u, v| {
+                    at_b.at((ub, vb), (u, v));
+                    at_b.point(pos)
+                },
+                gap,
+            );
+            let Some([sa, ta, sb, tb]) = found else {
+                return Some(());
+            };
+            at_a.at((ua, va), (sa, ta));
+            at_b.at((ub, vb), (sb, tb));
+            let d = at_a.point(pos) - at_b.point(pos);
+            let dist = d.length();
+            // Cells that cross exactly give no direction to part them: the next substep will.
+            if !(dist < gap && dist > gap * P::Scalar::ratio(1, 1024)) {
+                return Some(());
+            }
+            let g = |i: usize| at_a.wu[i % U] * at_a.wv[i / U] - at_b.wu[i % U] * at_b.wv[i / U];
+            let normal = d * (P::Scalar::ONE / dist);
+            let parted = parting(normal, gap - dist, point_of(vel, g), (friction, h));
+            if spread(pos, vel, inv_mass, g, parted).is_some() {
+                deepest = deepest.max(gap - dist);
+            }
+            Some(())
+        });
+        if let Some(net) = controls.as_mut().filter(|_| deepest > zero) {
+            let grid = pos.as_chunks::<U>().0;
+            *net = core::array::from_fn(|j| grid[j]);
+            crate::curves::surface::natural_grid(net);
+        }
+        deepest
+    }
+}
+
+/// Writes into `boxes[cv · (U − 1) + cu]` a box that holds cell `(cu, cv)` of the surface
+/// `smoothing` draws through the `U × V` grid `pos`: the box of the cell's Bézier control
+/// points (each row's span through the cell, then each of those control points' columns
+/// along `v`), which hold the cell (the convex hull property); one Bézier's cells all get the
+/// whole net's box. `None` when a row or column is out of range.
+fn cell_boxes<P: Point, const U: usize, const V: usize>(
+    smoothing: Smoothing,
+    pos: &[P],
+    boxes: &mut [Aabb<P>],
+) -> Option<()> {
+    let rows = pos.as_chunks::<U>().0;
+    if smoothing == Smoothing::Bezier {
+        boxes.fill(Aabb::from_points(pos)?);
+        return Some(());
+    }
+    for cu in 0..U - 1 {
+        let mut columns = [[P::default(); V]; 4];
+        let mut controls = 0;
+        for (j, row) in rows.iter().enumerate().take(V) {
+            let curve = Smoothed::open(smoothing, row).ok()?;
+            let points = curve.span_points(cu);
+            controls = points.len().min(4);
+            for (column, &p) in columns.iter_mut().zip(points) {
+                column[j] = p;
+            }
+        }
+        for (k, column) in columns[..controls].iter().enumerate() {
+            let curve = Smoothed::open(smoothing, column).ok()?;
+            for cv in 0..V - 1 {
+                let b = Aabb::from_points(curve.span_points(cv))?;
+                let cell = &mut boxes[cv * (U - 1) + cu];
+                *cell = if k == 0 { b } else { cell.union(b) };
+            }
+        }
+    }
+    Some(())
+}
+
+/// Calls `visit(a, b)` once for every two items whose `boxes` overlap: `order` (the items'
+/// indices) insertion-sorted by the boxes' low x (few items, and often nearly sorted
+/// already), then swept. Stops at the first `None` from `visit` and returns it.
+fn sweep<P: Point>(
+    boxes: &[Aabb<P>],
+    order: &mut [usize],
+    mut visit: impl FnMut(usize, usize) -> Option<()>,
+) -> Option<()> {
+    let low = |b: &Aabb<P>| b.min.coord(0);
+    for i in 1..order.len() {
+        let mut j = i;
+        while j > 0 && low(&boxes[order[j - 1]]) > low(&boxes[order[j]]) {
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    for (i, &a) in order.iter().enumerate() {
+        for &b in &order[i + 1..] {
+            if low(&boxes[b]) > boxes[a].max.coord(0) {
+                break;
+            }
+            if boxes[a].overlaps(&boxes[b]) {
+                visit(a, b)?;
+            }
+        }
+    }
+    Some(())
+}
+
+/// The position and velocity changes that part two points `depth` too near along `normal`
+/// (from the second to the first), moving at `relative` (the first's velocity less the
+/// second's): pushed apart by `depth`, their approach stopped, their sliding braked by
+/// Coulomb `friction` and that braking taken back from this substep of `h`'s move.
+fn parting<P: Point>(
+    normal: P,
+    depth: P::Scalar,
+    relative: P,
+    (friction, h): (P::Scalar, P::Scalar),
+) -> (P, P) {
+    let vn = relative.dot(normal);
+    let dx = normal * depth;
+    if vn >= P::Scalar::ZERO {
+        return (dx, P::default());
+    }
+    let push = -vn;
+    let slide = relative - normal * vn;
+    let speed = slide.length();
+    let brake = if speed <= friction * push {
+        slide
+    } else {
+        slide * (friction * push / speed)
+    };
+    (dx - brake * h, normal * push - brake)
+}
+
+/// The parameters `[u_a, v_a, u_b, v_b]` in `[0, 1]⁴` of the nearest points of two surface
+/// cells `a(u, v)` and `b(u, v)`: the [`SEEDS`] nearest pairs of their 3×3 samples, each
+/// finished by a pattern search along the four parameters from a step of 1/4 down to
+/// 1/1024 of a cell (at most [`CELL_ROUNDS`] rounds), each trial moving one point only;
+/// the nearest result wins. `None`, without the search, when no sample pair comes within
+/// `gap` plus the longest distance between neighbouring samples: the cells are apart.
+fn nearest_on_cells<P: Point>(
+    mut a: impl FnMut(P::Scalar, P::Scalar) -> P,
+    mut b: impl FnMut(P::Scalar, P::Scalar) -> P,
+    gap: P::Scalar,
+) -> Option<[P::Scalar; 4]> {
+    let at = |k: usize| {
+        (
+            P::Scalar::ratio(k as u32 % 3, 2),
+            P::Scalar::ratio(k as u32 / 3, 2),
+        )
+    };
+    let pa: [P; 9] = core::array::from_fn(|k| a(at(k).0, at(k).1));
+    let pb: [P; 9] = core::array::from_fn(|k| b(at(k).0, at(k).1));
+    // The longest step between neighbouring samples (right and above) of either cell.
+    let mut spacing = P::Scalar::ZERO;
+    for k in 0..9 {
+        for next in [k + 1, k + 3] {
+            if next < 9 && (next == k + 3 || k % 3 < 2) {
+                spacing = spacing
+                    .max((pa[next] - pa[k]).length())
+                    .max((pb[next] - pb[k]).length());
+            }
+        }
+    }
+    let mut seeds: [Option<(P::Scalar, usize, usize)>; SEEDS] = [None; SEEDS];
+    for (i, &x) in pa.iter().enumerate() {
+        for (j, &y) in pb.iter().enumerate() {
+            let d = (x - y).length();
+            if d >= gap + spacing {
+                continue;
+            }
+            let mut seed = Some((d, i, j));
+            for slot in &mut seeds {
+                if slot.is_none_or(|kept| seed.is_some_and(|new| new.0 < kept.0)) {
+                    core::mem::swap(slot, &mut seed);
+                }
+            }
+        }
+    }
+    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
+    let clamp = |x: P::Scalar| x.max(zero).min(one);
+    let mut found: Option<(P::Scalar, [P::Scalar; 4])> = None;
+    for (d, i, j) in seeds.into_iter().flatten() {
+        let mut params = [at(i).0, at(i).1, at(j).0, at(j).1];
+        let (mut xa, mut xb, mut best) = (pa[i], pb[j], d);
+        let mut step = P::Scalar::ratio(1, 4);
+        for _ in 0..CELL_ROUNDS {
+            let before = best;
+            for k in 0..8 {
+                let (axis, sign) = (k / 2, if k % 2 == 0 { step } else { -step });
+                let mut trial = params;
+                trial[axis] = clamp(trial[axis] + sign);
+                if trial[axis] == params[axis] {
+                    continue;
+                }
+                let (ta, tb) = if axis < 2 {
+                    (a(trial[0], trial[1]), xb)
+                } else {
+                    (xa, b(trial[2], trial[3]))
+                };
+                let d = (ta - tb).length();
+                if d < best {
+                    (params, xa, xb, best) = (trial, ta, tb, d);
+                }
+            }
+            if best >= before {
+                step = step * P::Scalar::ratio(1, 2);
+                if step < P::Scalar::ratio(1, 1024) {
+                    break;
+                }
+            }
+        }
+        if found.is_none_or(|f| best < f.0) {
+            found = Some((best, params));
+        }
+    }
+    found.map(|(_, params)| params)
 }
 
 /// The parameters `(u, v)` in `[0, 1]²` of the nearest points of two spans, `a(u)` and
@@ -229,6 +458,9 @@ const SEEDS: usize = 2;
 const NEWTON_STEPS: usize = 4;
 /// Rounds of the pattern search at most: 9 halvings and the moves between them.
 const SEARCH_ROUNDS: usize = 12;
+/// Rounds of the pattern search on two surface cells at most: 8 halvings and the moves
+/// between them.
+const CELL_ROUNDS: usize = 16;
 /// The pattern search's directions: the axes and the diagonals (which follow the valley of
 /// two spans lying side by side).
 const DIRECTIONS: [(i16, i16); 8] = [

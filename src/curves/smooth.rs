@@ -445,12 +445,17 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
 
     /// The box of span `span`'s control points, which holds the span (convex hull property).
     pub fn span_bounds(&self, span: usize) -> Aabb<P> {
-        let points: &[P] = match &self.pieces {
+        Aabb::from_points(self.span_points(span)).unwrap_or(Aabb::point(P::default()))
+    }
+
+    /// Span `span`'s control points: 4 for a cubic span, 2 for a segment, every particle for
+    /// one Bézier (a span past the last is the last).
+    pub(crate) fn span_points(&self, span: usize) -> &[P] {
+        match &self.pieces {
             Pieces::Whole(curve) => curve.points(),
             Pieces::Cubic(spans, count) => spans[span.min(count - 1)].points(),
             Pieces::Straight(segments, count) => segments[span.min(count - 1)].points(),
-        };
-        Aabb::from_points(points).unwrap_or(Aabb::point(P::default()))
+        }
     }
 
     /// How much each particle weighs in the point of span `span` at `t`: the point is

@@ -2,10 +2,13 @@
 #![allow(dead_code)]
 
 use dunas::Settings;
+use dunas::collider::Collider;
+use dunas::contact::{Contacts, Touch};
 use dunas::integrator::AnyIntegrator;
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
-use dunas::{Accuracy, Bezier, MassSpring, Point, Scalar, Vec2};
+use dunas::surface::SurfaceTable;
+use dunas::{Accuracy, Bezier, Cloth, MassSpring, Point, Scalar, Smoothing, Vec2, Vec3};
 
 /// Control points on a grid of `1 / DENOM`: exactly representable in f32, f64 and Q16.
 pub const DENOM: i64 = 16;
@@ -536,4 +539,146 @@ pub fn released_spline_rope<S: Scalar, I: dunas::spline_rope::SplineStepper>(
     let (start, end) = (Vec2::new(S::ZERO, S::ZERO), Vec2::new(S::ONE, S::ZERO));
     dunas::spline_rope::SplineRope::new(start, end, S::ONE, stretch, settings)
         .expect("a valid rope")
+}
+
+/// Particles a side of the towel, and its drawn points a side (3 a cell).
+pub const TOWEL: usize = 10;
+pub const TOWEL_DRAWN: usize = 3 * (TOWEL - 1) + 1;
+
+/// A towel (10×10 particles, 0.9 × 0.6 m, 0.3 kg) dropped over a rod 2 cm thick; after 2 s
+/// a push of 6 m/s² on its left half drives that half into the right one, for 3 s more.
+/// Returns, over checks every `every` frames of the surface as drawn (3 points a cell), the
+/// most crossings found (an edge of the drawn mesh through a triangle of it 3 or more cells
+/// away) and the closest two drawn points of cells 3 or more apart; and the steps' mean
+/// seconds a frame.
+pub fn towel_over_a_rod(
+    smoothing: Smoothing,
+    self_contact: bool,
+    every: usize,
+) -> (usize, f64, f64) {
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.8, 0.0),
+        damping: 0.5,
+        ..Settings::default()
+    };
+    let cloth = Material {
+        stiffness: 800.0,
+        damping: 0.5,
+    };
+    let bending = Material {
+        stiffness: 20.0,
+        damping: 0.1,
+    };
+    let mut towel: Cloth<Vec3<f64>, TOWEL, TOWEL> = Cloth::rectangle(
+        Vec3::new(-0.45, 1.05, -0.3),
+        Vec3::new(0.9, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 0.6),
+        0.3,
+        [cloth, cloth, bending],
+        settings,
+    )
+    .unwrap();
+    let rod = [
+        Collider::capsule(Vec3::new(0.0, 1.0, -1.0), Vec3::new(0.0, 1.0, 1.0), 0.02)
+            .unwrap()
+            .with_friction(0.6, 0.5)
+            .unwrap(),
+    ];
+    let contacts = Contacts::new(&rod, 0.01, Touch::Drawn(smoothing)).unwrap();
+    let contacts = if self_contact {
+        contacts.with_self_contact(0.3).unwrap()
+    } else {
+        contacts
+    };
+    let table = SurfaceTable::<f64, TOWEL, TOWEL_DRAWN>::new(smoothing, TOWEL_DRAWN).unwrap();
+    let mut drawn = vec![Vec3::default(); TOWEL_DRAWN * TOWEL_DRAWN];
+    let mut normals = drawn.clone();
+    let (mut crossings, mut closest, mut seconds) = (0, f64::INFINITY, 0.0);
+    for frame in 0..300 {
+        let mut push = LeftHalf(if frame >= 120 { 6.0 } else { 0.0 });
+        let start = std::time::Instant::now();
+        let _ = towel
+            .step_touching(1.0 / 60.0, &mut push, &contacts)
+            .unwrap();
+        seconds += start.elapsed().as_secs_f64();
+        if frame % every == every - 1 {
+            towel
+                .draw(&table, &table, &mut drawn, &mut normals)
+                .unwrap();
+            let (now, near) = self_crossings(&drawn);
+            crossings = crossings.max(now);
+            closest = closest.min(near);
+        }
+    }
+    (crossings, closest, seconds / 300.0)
+}
+
+/// Pushes the particles of the left half of a `TOWEL`-wide cloth along +x (m/s²).
+pub struct LeftHalf(pub f64);
+
+impl dunas::force::ForceField<Vec3<f64>> for LeftHalf {
+    fn apply(
+        &mut self,
+        _: f64,
+        _: &dunas::force::Bodies<'_, Vec3<f64>>,
+        out: &mut dunas::force::Accelerations<'_, Vec3<f64>>,
+    ) {
+        for k in (0..out.len()).filter(|k| k % TOWEL < TOWEL / 2) {
+            out.add_acceleration(k, Vec3::new(self.0, 0.0, 0.0));
+        }
+    }
+}
+
+/// The crossings of a drawn mesh (`TOWEL_DRAWN` points a side, row by row) with itself:
+/// every edge tested against every triangle of a cell 3 or more away; and the closest two
+/// points of such cells.
+pub fn self_crossings(p: &[Vec3<f64>]) -> (usize, f64) {
+    let n = TOWEL_DRAWN;
+    let cell = |k: usize| ((k % n).min(n - 2) / 3, (k / n).min(n - 2) / 3);
+    let apart = |a: usize, b: usize| {
+        let ((ua, va), (ub, vb)) = (cell(a), cell(b));
+        ua.abs_diff(ub) >= 3 || va.abs_diff(vb) >= 3
+    };
+    let mut closest = f64::INFINITY;
+    for a in 0..p.len() {
+        for b in a + 1..p.len() {
+            if apart(a, b) {
+                closest = closest.min((p[a] - p[b]).length());
+            }
+        }
+    }
+    let corners: Vec<usize> = (0..(n - 1) * (n - 1))
+        .map(|c| (c % (n - 1)) + (c / (n - 1)) * n)
+        .collect();
+    let triangles: Vec<[usize; 3]> = corners
+        .iter()
+        .flat_map(|&k| [[k, k + 1, k + n], [k + 1, k + n + 1, k + n]])
+        .collect();
+    // Every edge once: along a row, along a column, and each quad's diagonal.
+    let edges: Vec<(usize, usize)> = (0..n * n)
+        .flat_map(|k| [(k, k + 1), (k, k + n)])
+        .filter(|&(a, b)| b < n * n && (b != a + 1 || b % n != 0))
+        .chain(corners.iter().map(|&k| (k + 1, k + n)))
+        .collect();
+    let mut crossings = 0;
+    for &(a, b) in &edges {
+        for t in triangles.iter().filter(|t| apart(a, t[0])) {
+            if crosses((p[a], p[b]), [p[t[0]], p[t[1]], p[t[2]]]) {
+                crossings += 1;
+            }
+        }
+    }
+    (crossings, closest)
+}
+
+/// Whether segment `a`–`b` passes through triangle `t`.
+fn crosses((a, b): (Vec3<f64>, Vec3<f64>), t: [Vec3<f64>; 3]) -> bool {
+    let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+    let (da, db) = ((a - t[0]).dot(normal), (b - t[0]).dot(normal));
+    if da * db > 0.0 || da == db {
+        return false;
+    }
+    let x = a + (b - a) * (da / (da - db));
+    let inside = |p: Vec3<f64>, q: Vec3<f64>| (q - p).cross(x - p).dot(normal) >= 0.0;
+    inside(t[0], t[1]) && inside(t[1], t[2]) && inside(t[2], t[0])
 }

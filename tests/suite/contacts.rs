@@ -594,6 +594,69 @@ fn a_rope_dropped_in_a_pile_never_passes_through_itself() {
     assert!(lowest >= RADIUS * 0.99, "{lowest}");
 }
 
+/// A towel folded over a rod, one half pushed into the other: with self-contact no edge of
+/// its drawn surface (3 points a cell) passes through it anywhere 3 cells or more away, for
+/// the Catmull-Rom and the natural-spline surface, its closest drawn points a diameter
+/// apart. (Without self-contact the halves pass through each other: printed beside it.)
+#[test]
+fn a_towel_folded_over_a_rod_never_passes_through_itself() {
+    for smoothing in [Smoothing::CatmullRom, Smoothing::NaturalSpline] {
+        let (crossings, closest, _) = common::towel_over_a_rod(smoothing, true, 5);
+        eprintln!(
+            "{smoothing:?}: {crossings} crossings, closest drawn points {closest:.4} m \
+             (diameter 0.02 m)"
+        );
+        assert_eq!(crossings, 0, "{smoothing:?}");
+    }
+    let (without, near, _) = common::towel_over_a_rod(Smoothing::CatmullRom, false, 5);
+    eprintln!("without self-contact: {without} crossings, closest drawn points {near:.4} m");
+}
+
+/// The same in `Q16` on an 8×8 towel, on the drawn surface and between the particles: every
+/// step succeeds and stays finite.
+#[cfg(feature = "fixed")]
+#[test]
+fn a_q16_towel_keeps_off_itself() {
+    use dunas::Q16;
+    let q = Q16::from_f64;
+    let settings = Settings {
+        gravity: Vec3::new(q(0.0), q(-9.8), q(0.0)),
+        damping: q(0.5),
+        ..Settings::default()
+    };
+    let m = Material {
+        stiffness: q(400.0),
+        damping: q(0.5),
+    };
+    let rod = [Collider::capsule(
+        Vec3::new(q(0.0), q(1.0), q(-1.0)),
+        Vec3::new(q(0.0), q(1.0), q(1.0)),
+        q(0.02),
+    )
+    .unwrap()];
+    for touch in [Touch::Drawn(Smoothing::CatmullRom), Touch::Particles] {
+        let mut towel: Cloth<Vec3<Q16>, 8, 8> = Cloth::rectangle(
+            Vec3::new(q(-0.4), q(1.05), q(-0.3)),
+            Vec3::new(q(0.8), q(0.0), q(0.0)),
+            Vec3::new(q(0.0), q(0.0), q(0.6)),
+            q(0.3),
+            [m, m, m],
+            settings,
+        )
+        .unwrap();
+        let contacts = Contacts::new(&rod, q(0.02), touch)
+            .unwrap()
+            .with_self_contact(q(0.3))
+            .unwrap();
+        for _ in 0..90 {
+            let _ = towel
+                .step_touching(Q16::ratio(1, 60), (), &contacts)
+                .unwrap();
+        }
+        assert!(towel.positions().iter().all(|p| p.is_finite()), "{touch:?}");
+    }
+}
+
 /// Self-contact in `Q16`, on the segments between the particles, on a drawn curve and on a
 /// drawn loop: a rope held at one end falls in a heap on a floor; every step succeeds, stays
 /// finite and above the floor, and the raw rope keeps its segments apart.
