@@ -43,6 +43,9 @@ pub struct Report {
     pub stretch_permille: Option<u32>,
     /// A soft body's area at the end, in thousandths of its area at the start.
     pub area_permille: Option<u32>,
+    /// The closest two parts of a rope's drawn curve that are not neighbours, over the run,
+    /// in thousandths of its diameter, where the example measures it.
+    pub closest_permille: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -135,9 +138,36 @@ pub fn meter_frames<T, S: Scalar>(
 pub fn meter_frames_checked<T, S: Scalar>(
     meter: &mut impl Meter,
     scene: &mut T,
-    mut step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
-    mut sample: impl FnMut(&mut T) -> Result<(), Error>,
-    mut check: impl FnMut(&mut T),
+    step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
+    sample: impl FnMut(&mut T) -> Result<(), Error>,
+    check: impl FnMut(&mut T),
+) -> Result<Costs, Error> {
+    meter_all(meter, scene, (step, sample, check), false)
+}
+
+/// As [`meter_frames_checked`], for steps that may take more than the counter's million
+/// instructions ([`Meter::count_long`]).
+pub fn meter_long_frames_checked<T, S: Scalar>(
+    meter: &mut impl Meter,
+    scene: &mut T,
+    step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
+    sample: impl FnMut(&mut T) -> Result<(), Error>,
+    check: impl FnMut(&mut T),
+) -> Result<Costs, Error> {
+    meter_all(meter, scene, (step, sample, check), true)
+}
+
+/// The frames of [`meter_frames_checked`]; each step metered with [`Meter::count_long`] when
+/// `long`.
+fn meter_all<T, S: Scalar>(
+    meter: &mut impl Meter,
+    scene: &mut T,
+    (mut step, mut sample, mut check): (
+        impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
+        impl FnMut(&mut T) -> Result<(), Error>,
+        impl FnMut(&mut T),
+    ),
+    long: bool,
 ) -> Result<Costs, Error> {
     let mut costs = Costs {
         step: 0,
@@ -149,7 +179,11 @@ pub fn meter_frames_checked<T, S: Scalar>(
     };
     let mut total: u64 = 0;
     for frame in 1..=STEPS as u32 {
-        let (stepped, n) = meter.count(|| step(scene));
+        let (stepped, n) = if long {
+            meter.count_long(|| step(scene))
+        } else {
+            meter.count(|| step(scene))
+        };
         let (sampled, m) = meter.count(|| sample(scene));
         costs.substeps = stepped?.substeps;
         sampled?;
@@ -220,6 +254,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         other_frame_instructions: None,
         stretch_permille: None,
         area_permille: None,
+        closest_permille: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -481,6 +516,9 @@ mod board {
                 if let Some(n) = r.area_permille {
                     put_number(b"area_permille", n, false);
                 }
+                if let Some(n) = r.closest_permille {
+                    put_number(b"closest_permille", n, false);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -559,6 +597,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.area_permille {
                 println!("area_permille={n}");
+            }
+            if let Some(n) = r.closest_permille {
+                println!("closest_permille={n}");
             }
         }
         Err(e) => {

@@ -24,6 +24,10 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn is_closed(&self) -> bool {
         false
     }
+    /// Whether every span is a straight segment (the polyline between the particles).
+    fn is_straight(&self) -> bool {
+        false
+    }
 }
 
 /// A [`Smoothed`] curve with what rebuilds it: a ring, or the open curve through the first
@@ -53,6 +57,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
     }
     fn is_closed(&self) -> bool {
         self.closed
+    }
+    fn is_straight(&self) -> bool {
+        self.smoothing == Smoothing::Polyline
     }
     fn rebuild(&mut self, pos: &[P; K]) -> bool {
         let curve = match (self.closed, self.len == K) {

@@ -11,7 +11,8 @@ impl<P: Point> Contacts<'_, P> {
     /// loop) at least twice the thickness apart, when self-contact is on. Broad phase: each
     /// span's control-point box (it holds the span) grown by the thickness, sorted along the
     /// first axis and swept, so only spans whose boxes overlap are compared. Narrow phase:
-    /// the nearest points of the two spans ([`nearest`]); the pair is pushed apart along the line between them, through both spans'
+    /// the nearest points of the two spans ([`nearest`]; exactly, for the straight segments
+    /// between the particles); the pair is pushed apart along the line between them, through both spans'
     /// particle weights (a particle both spans share moves by the difference), with its
     /// approach stopped and its sliding braked by Coulomb friction. Returns the deepest
     /// overlap it found, or `None` when the redrawn curve left the range (the step's guard
@@ -64,7 +65,15 @@ impl<P: Point> Contacts<'_, P> {
         let zero = P::Scalar::ZERO;
         let gap = self.thickness + self.thickness;
         let between = |u, v| curve.point(a, u) - curve.point(b, v);
-        let Some((u, v)) = nearest(|u| curve.point(a, u), |v| curve.point(b, v), gap) else {
+        let found = if curve.is_straight() {
+            // Two segments: their nearest points exactly.
+            let ends = |span| (curve.point(span, zero), curve.point(span, P::Scalar::ONE));
+            let (u, v, _) = segments_nearest(ends(a), ends(b));
+            Some((u, v))
+        } else {
+            nearest(|u| curve.point(a, u), |v| curve.point(b, v), gap)
+        };
+        let Some((u, v)) = found else {
             return Some(zero);
         };
         let d = between(u, v);

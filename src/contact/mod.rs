@@ -409,9 +409,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             Touch::Drawn(s) => (s, false, true),
             Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, true, true),
             touch => {
-                self.resolve_particles(pos, vel, inv_mass, times);
                 if self.self_friction.is_none() {
-                    return;
+                    return self.resolve_particles(pos, vel, inv_mass, times);
                 }
                 let closed = matches!(touch, Touch::DrawnLoop(_)) && K >= 3;
                 (Smoothing::Polyline, closed, false)
@@ -422,7 +421,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if on_curve {
                     self.resolve_spans(pos, vel, w, times, drawn);
                 } else {
-                    let _ = self.resolve_self(pos, vel, w, times.0, drawn);
+                    self.resolve_segments(pos, vel, w, times, drawn);
                 }
             };
         let whole = joined[..K - 1].iter().all(|&j| j);
@@ -452,10 +451,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             let (run, m) = (start..end, end - start);
             start = end;
             if m == 1 {
-                if on_curve {
-                    let (p, v, w) = (&mut pos[run.clone()], &mut vel[run.clone()], &inv_mass[run]);
-                    self.resolve_particles(p, v, w, times);
-                }
+                let (p, v, w) = (&mut pos[run.clone()], &mut vel[run.clone()], &inv_mass[run]);
+                self.resolve_particles(p, v, w, times);
                 continue;
             }
             // The piece, padded with its last particle (weight 0, held: nothing moves it).
@@ -497,6 +494,29 @@ impl<'a, P: Point> Contacts<'a, P> {
                 return;
             }
             match self.resolve_self(pos, vel, inv_mass, h, curve) {
+                Some(deepest) if deepest > settled => {}
+                _ => return,
+            }
+        }
+    }
+
+    /// Pushes every particle out of every collider and the segments between them (`line`)
+    /// off each other, in rounds as [`resolve_spans`](Self::resolve_spans) does.
+    fn resolve_segments<const K: usize>(
+        &self,
+        pos: &mut [P; K],
+        vel: &mut [P; K],
+        inv_mass: &[P::Scalar; K],
+        (h, lag): (P::Scalar, P::Scalar),
+        line: &mut Rebuilt<P, K>,
+    ) {
+        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 256);
+        for _ in 0..SELF_ROUNDS {
+            self.resolve_particles(pos, vel, inv_mass, (h, lag));
+            if !line.rebuild(pos) {
+                return;
+            }
+            match self.resolve_self(pos, vel, inv_mass, h, line) {
                 Some(deepest) if deepest > settled => {}
                 _ => return,
             }
