@@ -164,8 +164,8 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D
     /// rope falling into a pile on a floor never has two spans closer than the diameter less
     /// 1% over 10 s (0.96% at the closest); lying straight on the floor, self-contact adds
-    /// 0.9 to 1.5 times the rope's step to a frame (three runs); settled in a pile, where
-    /// about 40 pairs of spans are near each other, 3 400 to 3 500 times (2.7 to 2.8 ms a
+    /// 0.9 to 1.7 times the rope's step to a frame (six runs); settled in a pile, where
+    /// about 40 pairs of spans are near each other, 3 500 to 3 700 times (2.8 to 2.9 ms a
     /// frame on the development machine): a heap of rope is costly, keep its particles few.
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
