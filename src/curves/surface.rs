@@ -140,37 +140,44 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
         self.smoothing
     }
 
-    /// `(Σ w_i p_i, Σ w'_i p_i, Σ w_i q_i)` of sample `k` over `points` and `others`, on
-    /// the sample's non-zero weights only: four for the splines (unrolled), up to `K` for
-    /// one Bézier.
+    /// `(Σ w_i p_i, Σ w'_i p_i, Σ w_i q_i)` of sample `k` over `points` and `others` (the
+    /// last `P::default()` without `others`), on the sample's non-zero weights only: four
+    /// for the splines (unrolled), up to `K` for one Bézier.
     #[inline(always)]
-    fn apply<P: Point<Scalar = S>>(&self, k: usize, points: &[P; K], others: &[P; K]) -> (P, P, P) {
+    fn apply<P: Point<Scalar = S>>(
+        &self,
+        k: usize,
+        points: &[P; K],
+        others: Option<&[P; K]>,
+    ) -> (P, P, P) {
         let (first, end) = self.support[k];
         let span = usize::from(first)..usize::from(end);
         let (weights, slopes) = (
             &self.weights[k][span.clone()],
             &self.slopes[k][span.clone()],
         );
-        let (points, others) = (&points[span.clone()], &others[span]);
+        let (points, others) = (&points[span.clone()], others.map(|q| &q[span]));
         match (
             <&[P; 4]>::try_from(points),
-            <&[P; 4]>::try_from(others),
             <&[S; 4]>::try_from(weights),
             <&[S; 4]>::try_from(slopes),
         ) {
-            (Ok(p), Ok(q), Ok(w), Ok(s)) => {
+            (Ok(p), Ok(w), Ok(s)) => {
                 let at = p[0] * w[0] + p[1] * w[1] + p[2] * w[2] + p[3] * w[3];
                 let slope = p[0] * s[0] + p[1] * s[1] + p[2] * s[2] + p[3] * s[3];
-                let other = q[0] * w[0] + q[1] * w[1] + q[2] * w[2] + q[3] * w[3];
+                let other = others.map_or(P::default(), |q| {
+                    q[0] * w[0] + q[1] * w[1] + q[2] * w[2] + q[3] * w[3]
+                });
                 (at, slope, other)
             }
             _ => {
                 let (mut at, mut slope, mut other) = (P::default(), P::default(), P::default());
-                for ((p, q), (&w, &s)) in points.iter().zip(others).zip(weights.iter().zip(slopes))
-                {
-                    at += *p * w;
-                    slope += *p * s;
-                    other += *q * w;
+                for (i, (&w, &s)) in weights.iter().zip(slopes).enumerate() {
+                    at += points[i] * w;
+                    slope += points[i] * s;
+                    if let Some(q) = others {
+                        other += q[i] * w;
+                    }
                 }
                 (at, slope, other)
             }
@@ -249,7 +256,7 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     let mut column_slopes = [[zero; V]; NU];
     for (j, row) in net.iter().enumerate() {
         for a in 0..nu {
-            let (p, du, _) = tu.apply(a, row, row);
+            let (p, du, _) = tu.apply(a, row, None);
             columns[a][j] = p;
             column_slopes[a][j] = du;
         }
@@ -261,7 +268,7 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     for (b, (line, line_normals)) in lines.take(nv).enumerate() {
         let samples = columns.iter().zip(&column_slopes);
         for ((p, n), (column, slopes)) in line.iter_mut().zip(line_normals).zip(samples) {
-            let (at, dv, du) = tv.apply(b, column, slopes);
+            let (at, dv, du) = tv.apply(b, column, Some(slopes));
             *p = at;
             *n = unit_normal(du, dv).unwrap_or_default();
         }

@@ -128,6 +128,17 @@ pub trait Topology<S: Scalar> {
         let _ = x;
         0
     }
+    /// `key` with what the springs are mixed in by `mix`: every spring's ends and stiffness
+    /// (torn springs as the topology marks them), so that equal springs give equal
+    /// fingerprints. What a direct solver's factor depends on besides the masses. By default
+    /// every spring, two mixes each; a topology may mix less that says as much.
+    fn fingerprint(&self, key: u64, mix: impl Fn(u64, u64) -> u64) -> u64 {
+        let mut key = key;
+        self.for_each_spring(|a, b, _, m| {
+            key = mix(mix(key, ((a as u64) << 32) | b as u64), m.stiffness.bits());
+        });
+        key
+    }
 }
 
 /// An explicit list of up to `CAP` springs of one material, stored inline. Springs snap

@@ -53,7 +53,7 @@ use crate::{Point, Scalar};
 /// Cost per solve, `n` particles and band `b` (2 for a rope, `2U` for a cloth): a factor,
 /// when something changed, of about `n·b²/2` multiply-adds; per iteration a square root and a
 /// division a spring and `2·n·b` vector multiply-adds. The same at every stiffness. On a
-/// Cortex-M4F the 8×8 sail (band 16) takes about 100 000 instructions a step and 80 000 more
+/// Cortex-M4F the 8×8 sail (band 16) takes about 93 000 instructions a step and 80 000 more
 /// for a new factor (`examples/mcu_sail.rs`). Memory: the factor, `n·(b + 1)` scalars in the
 /// system (4.4 KB for the 8×8 sail in `f32`), and about `n·12` scalars of stack in 3D.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -128,8 +128,8 @@ impl Integrator for DirectSprings {
 }
 
 /// What [`DirectSprings`] keeps inside its system between steps: the factor of its last
-/// matrix and a 64-bit key of what made it (the step's length, every inverse mass, every
-/// live spring's ends and stiffness). A step whose key is the same solves with the factor
+/// matrix and a 64-bit key of what made it (the step's length, every inverse mass, the
+/// springs' [`fingerprint`](Topology::fingerprint)). A step whose key is the same solves with the factor
 /// kept; any change (a pin, a hang, a snap or a cut, another `dt`) factors again.
 pub struct Factored<S: Scalar, Sh: Shape> {
     key: Option<u64>,
@@ -346,11 +346,11 @@ impl DirectSprings {
                 *m = P::Scalar::ONE / w;
             }
         }
-        // The key of the matrix: the step's length and every inverse mass here, every live
-        // spring's ends and stiffness in the first iteration's pass.
-        let mut key = w
+        // The key of the matrix: the step's length, every inverse mass and the springs.
+        let key = w
             .iter()
             .fold(mix(0, h.bits()), |key, &w| mix(key, w.bits()));
+        let key = model.topology.fingerprint(key, mix);
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
         for iteration in 0..self.iterations.max(1) {
@@ -366,9 +366,6 @@ impl DirectSprings {
             model.topology.for_each_spring(|a, b, rest, m| {
                 if !live(a, b, m.stiffness) {
                     return;
-                }
-                if first {
-                    key = mix(mix(key, ((a as u64) << 32) | b as u64), m.stiffness.bits());
                 }
                 // The spring's pull from the positions so far: stiffness towards its rest
                 // length, and its damping as an explicit force along it, at most what stops
