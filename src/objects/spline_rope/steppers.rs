@@ -436,7 +436,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// [`MassSpring::step`](crate::MassSpring::step) for the plan, the cap and the errors),
     /// or one backward Euler step (in `Q16` more past `h·(ω + γ) = 8`, see
     /// [`SplineStepper`]). Applied forces are used up. In `Q16`, a generalized force over
-    /// the mass unit `m̄` (see the [module](self)) past the format's range on a control
+    /// the mass unit `m̄` (see the [module](crate::spline_rope)) past the format's range on a control
     /// point is clamped and reported in [`StepInfo::saturated`]: from gravity and a field's
     /// accelerations (gravity alone never, below `|g| = 32 767`) and from the applied
     /// forces (a force `f` at a point adds up to `|f| / m̄`); explicitly, also a substep's
