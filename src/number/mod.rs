@@ -5,4 +5,6 @@
 pub(crate) mod math;
 #[cfg(feature = "fixed")]
 pub(crate) mod q16;
+#[cfg(feature = "fixed")]
+mod q16_bits;
 pub mod scalar;
