@@ -50,15 +50,18 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let costs = device::meter_frames_checked(
         meter,
         &mut scene,
-        |(rope, _, _)| rope.step(dt),
-        |(rope, curve, _)| rope.sample(Smoothing::CatmullRom, curve).map(drop),
-        |(rope, _, largest)| {
-            let chain = rope
-                .positions()
-                .windows(2)
-                .fold(S::ZERO, |sum, pair| sum + (pair[1] - pair[0]).length());
-            *largest = (*largest).max(chain / length - S::ONE);
-        },
+        (
+            |(rope, _, _)| rope.step(dt),
+            |(rope, curve, _)| rope.sample(Smoothing::CatmullRom, curve).map(drop),
+            |(rope, _, largest)| {
+                let chain = rope
+                    .positions()
+                    .windows(2)
+                    .fold(S::ZERO, |sum, pair| sum + (pair[1] - pair[0]).length());
+                *largest = (*largest).max(chain / length - S::ONE);
+            },
+        ),
+        false,
     )?;
     let (rope, curve, largest) = scene;
     let view = dunas::ascii::View::new(Vec2::new(px(-60), px(6)), px(3), px(6))?;

@@ -70,30 +70,33 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         closest: S::from_i16(100),
     };
     let dt = S::ratio(1, 60);
-    let costs = device::meter_long_frames_checked(
+    let costs = device::meter_frames_checked(
         meter,
         &mut scene,
-        |c| c.rope.step_touching(dt, (), &contacts),
-        |c| c.rope.sample(Smoothing::CatmullRom, &mut c.curve).map(drop),
-        |c| {
-            // The segments between the particles, where self-contact keeps the rope off
-            // itself, at 4 points each: points of segments two or more apart.
-            let x = c.rope.positions();
-            let line: [Vec2<S>; DRAWN] = core::array::from_fn(|k| {
-                let (i, t) = (
-                    (k / 4).min(N - 2),
-                    S::ratio((k - 4 * (k / 4).min(N - 2)) as u32, 4),
-                );
-                x[i] + (x[i + 1] - x[i]) * t
-            });
-            for (a, &p) in line.iter().enumerate() {
-                for (b, &q) in line.iter().enumerate().skip(a + 1) {
-                    if b / 4 >= a / 4 + 2 && !(b % 4 == 0 && b / 4 == a / 4 + 2) {
-                        c.closest = c.closest.min((p - q).length());
+        (
+            |c| c.rope.step_touching(dt, (), &contacts),
+            |c| c.rope.sample(Smoothing::CatmullRom, &mut c.curve).map(drop),
+            |c| {
+                // The segments between the particles, where self-contact keeps the rope off
+                // itself, at 4 points each: points of segments two or more apart.
+                let x = c.rope.positions();
+                let line: [Vec2<S>; DRAWN] = core::array::from_fn(|k| {
+                    let (i, t) = (
+                        (k / 4).min(N - 2),
+                        S::ratio((k - 4 * (k / 4).min(N - 2)) as u32, 4),
+                    );
+                    x[i] + (x[i + 1] - x[i]) * t
+                });
+                for (a, &p) in line.iter().enumerate() {
+                    for (b, &q) in line.iter().enumerate().skip(a + 1) {
+                        if b / 4 >= a / 4 + 2 {
+                            c.closest = c.closest.min((p - q).length());
+                        }
                     }
                 }
-            }
-        },
+            },
+        ),
+        true,
     )?;
     let view = dunas::ascii::View::new(
         Vec2::new(-frac(2, 10), frac(26, 100)),

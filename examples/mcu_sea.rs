@@ -87,19 +87,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
             let (col, row) = view.cell(Vec2::new(p.x, p.y));
             canvas.plot(col, row, b'~');
         }
-        let (l, r) = (
-            c.x - c.width * S::ratio(1, 2),
-            c.x + c.width * S::ratio(1, 2),
-        );
-        let (b, t) = (c.bottom, c.bottom + c.height);
-        let outline = [
-            Vec2::new(l, b),
-            Vec2::new(r, b),
-            Vec2::new(r, t),
-            Vec2::new(l, t),
-            Vec2::new(l, b),
-        ];
-        canvas.polyline(&view, &outline, b'#');
+        device::draw_box(canvas, &view, (c.x, c.width), (c.bottom, c.height));
     })?;
     let heights = scene.sea.heights().iter().flatten().copied();
     let drawn = scene

@@ -70,19 +70,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     let c = scene.crate_[0];
     let frame = device::ascii_frame(|canvas| {
         canvas.polyline(&view, &scene.curve, b'~');
-        let (l, r) = (
-            c.x - c.width * S::ratio(1, 2),
-            c.x + c.width * S::ratio(1, 2),
-        );
-        let (b, t) = (c.bottom, c.bottom + c.height);
-        let outline = [
-            Vec2::new(l, b),
-            Vec2::new(r, b),
-            Vec2::new(r, t),
-            Vec2::new(l, t),
-            Vec2::new(l, b),
-        ];
-        canvas.polyline(&view, &outline, b'#');
+        device::draw_box(canvas, &view, (c.x, c.width), (c.bottom, c.height));
     })?;
     let heights = scene.water.heights().iter().copied();
     let drawn = scene.curve.iter().flat_map(|p| [p.x, p.y]);

@@ -130,36 +130,13 @@ pub fn meter_frames<T, S: Scalar>(
     step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
     sample: impl FnMut(&mut T) -> Result<(), Error>,
 ) -> Result<Costs, Error> {
-    meter_frames_checked(meter, scene, step, sample, |_| {})
+    meter_frames_checked(meter, scene, (step, sample, |_| {}), false)
 }
 
-/// As [`meter_frames`], with `check` run after each frame and not metered: what the example
-/// measures of the scene, not what a game would run.
+/// As [`meter_frames`], with `check` run after each frame and not metered (what the example
+/// measures of the scene, not what a game would run); each step metered with
+/// [`Meter::count_long`] when `long` (steps past the counter's million instructions).
 pub fn meter_frames_checked<T, S: Scalar>(
-    meter: &mut impl Meter,
-    scene: &mut T,
-    step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
-    sample: impl FnMut(&mut T) -> Result<(), Error>,
-    check: impl FnMut(&mut T),
-) -> Result<Costs, Error> {
-    meter_all(meter, scene, (step, sample, check), false)
-}
-
-/// As [`meter_frames_checked`], for steps that may take more than the counter's million
-/// instructions ([`Meter::count_long`]).
-pub fn meter_long_frames_checked<T, S: Scalar>(
-    meter: &mut impl Meter,
-    scene: &mut T,
-    step: impl FnMut(&mut T) -> Result<dunas::system::StepInfo<S>, Error>,
-    sample: impl FnMut(&mut T) -> Result<(), Error>,
-    check: impl FnMut(&mut T),
-) -> Result<Costs, Error> {
-    meter_all(meter, scene, (step, sample, check), true)
-}
-
-/// The frames of [`meter_frames_checked`]; each step metered with [`Meter::count_long`] when
-/// `long`.
-fn meter_all<T, S: Scalar>(
     meter: &mut impl Meter,
     scene: &mut T,
     (mut step, mut sample, mut check): (
@@ -238,6 +215,26 @@ pub fn ascii_frame(draw: impl FnOnce(&mut dunas::ascii::Canvas)) -> Result<[u8; 
     let mut frame = [b' '; W * H];
     draw(&mut dunas::ascii::Canvas::new(&mut frame, W, H)?);
     Ok(frame)
+}
+
+/// A floating body's box seen from the side: centred on `x`, `width` wide, from `bottom`
+/// up `height`, drawn with `#`.
+pub fn draw_box<S: Scalar>(
+    canvas: &mut dunas::ascii::Canvas,
+    view: &dunas::View<Vec2<S>>,
+    (x, width): (S, S),
+    (bottom, height): (S, S),
+) {
+    let (l, r) = (x - width * S::ratio(1, 2), x + width * S::ratio(1, 2));
+    let t = bottom + height;
+    let outline = [
+        Vec2::new(l, bottom),
+        Vec2::new(r, bottom),
+        Vec2::new(r, t),
+        Vec2::new(l, t),
+        Vec2::new(l, bottom),
+    ];
+    canvas.polyline(view, &outline, b'#');
 }
 
 /// The report of a run: its checksum, its costs and its final frame.

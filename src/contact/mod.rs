@@ -421,7 +421,14 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if on_curve {
                     self.resolve_spans(pos, vel, w, times, drawn);
                 } else {
-                    self.resolve_segments(pos, vel, w, times, drawn);
+                    // The particles out of the colliders, the segments off each other.
+                    self.rounds(|| {
+                        self.resolve_particles(pos, vel, w, times);
+                        if !drawn.rebuild(pos) {
+                            return None;
+                        }
+                        self.resolve_self(pos, vel, w, times.0, drawn)
+                    });
                 }
             };
         let whole = joined[..K - 1].iter().all(|&j| j);
@@ -485,38 +492,22 @@ impl<'a, P: Point> Contacts<'a, P> {
         (h, lag): (P::Scalar, P::Scalar),
         curve: &mut impl DrawnSpans<P, K>,
     ) {
-        // With self-contact a pile is a stack of contacts on contacts, each push undoing part
-        // of its neighbours': rounds of both, until no part of the rope is within 1/256 of
-        // the gap of another (or SELF_ROUNDS rounds).
-        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 256);
-        for _ in 0..SELF_ROUNDS {
+        self.rounds(|| {
             if !self.resolve_colliders(pos, vel, inv_mass, (h, lag), curve) {
-                return;
+                return None;
             }
-            match self.resolve_self(pos, vel, inv_mass, h, curve) {
-                Some(deepest) if deepest > settled => {}
-                _ => return,
-            }
-        }
+            self.resolve_self(pos, vel, inv_mass, h, curve)
+        });
     }
 
-    /// Pushes every particle out of every collider and the segments between them (`line`)
-    /// off each other, in rounds as [`resolve_spans`](Self::resolve_spans) does.
-    fn resolve_segments<const K: usize>(
-        &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
-        (h, lag): (P::Scalar, P::Scalar),
-        line: &mut Rebuilt<P, K>,
-    ) {
+    /// Runs `round` (the colliders, then self-contact: the deepest overlap it left, or `None`
+    /// to stop) until no part is within 1/256 of the gap of another, at most
+    /// [`SELF_ROUNDS`] times: with self-contact a pile is a stack of contacts on contacts,
+    /// each push undoing part of its neighbours'. Without self-contact, one round.
+    fn rounds(&self, mut round: impl FnMut() -> Option<P::Scalar>) {
         let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 256);
         for _ in 0..SELF_ROUNDS {
-            self.resolve_particles(pos, vel, inv_mass, (h, lag));
-            if !line.rebuild(pos) {
-                return;
-            }
-            match self.resolve_self(pos, vel, inv_mass, h, line) {
+            match round() {
                 Some(deepest) if deepest > settled => {}
                 _ => return,
             }
@@ -602,11 +593,10 @@ impl<'a, P: Point> Contacts<'a, P> {
                 _ => P::Scalar::ONE,
             },
         );
-        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 256);
-        for _ in 0..SELF_ROUNDS {
+        self.rounds(|| {
             if on_surface {
                 self.surface_colliders::<U, V>(
-                    (pos, vel, inv_mass),
+                    (&mut *pos, &mut *vel, inv_mass),
                     (h, lag),
                     drawn,
                     &mut controls,
@@ -614,12 +604,9 @@ impl<'a, P: Point> Contacts<'a, P> {
             } else {
                 self.resolve_particles(pos, vel, inv_mass, (h, lag));
             }
-            let deepest =
-                self.resolve_self_surface::<U, V>((pos, vel, inv_mass), h, drawn.0, &mut controls);
-            if deepest <= settled {
-                return;
-            }
-        }
+            let parts = (&mut *pos, &mut *vel, inv_mass);
+            Some(self.resolve_self_surface::<U, V>(parts, h, drawn.0, &mut controls))
+        });
     }
 
     /// Pushes the surface `drawn` (its smoothing and its cells' overshoot) through the

@@ -228,20 +228,12 @@ impl<S: Scalar, const N: usize> Water<S, N> {
                 "each lighter than the water its box displaces (density · width · height)",
             ));
         }
-        let mut info = StepInfo {
-            substeps: 0,
-            simulated: S::ZERO,
-            slow_motion: false,
-            saturated: false,
-            snapped: 0,
-        };
         if dt == S::ZERO {
-            return Ok(info);
+            return Ok(stepped(0, S::ZERO, false));
         }
         // Substeps keep `c · h / spacing ≤ 0.9`.
         let rate = self.speed_of_waves / self.spacing;
         let (n, h, slow) = plan(dt, rate, (9, 10));
-        info.slow_motion = slow;
         let saved = (self.heights, self.velocities, *bodies);
         for _ in 0..n {
             self.substep(h, rate * rate, gravity, bodies);
@@ -257,9 +249,7 @@ impl<S: Scalar, const N: usize> Water<S, N> {
             (self.heights, self.velocities, *bodies) = saved;
             return Err(Error::Diverged);
         }
-        info.substeps = n as u16;
-        info.simulated = h * S::from_i16(n as i16);
-        Ok(info)
+        Ok(stepped(n, h, slow))
     }
 
     /// One substep of `h`; `stiffness` is `(c / spacing)²`.
@@ -337,5 +327,17 @@ fn plan<S: Scalar>(dt: S, rate: S, (num, den): (u32, u32)) -> (usize, S, bool) {
         (n, S::ratio(num, den) / rate, true)
     } else {
         (n, dt / S::from_i16(n as i16), false)
+    }
+}
+
+/// What a water step of `n` substeps of `h` did (`slow_motion` when they are less than its
+/// `dt`); water never saturates or snaps.
+fn stepped<S: Scalar>(n: usize, h: S, slow_motion: bool) -> StepInfo<S> {
+    StepInfo {
+        substeps: n as u16,
+        simulated: h * S::from_i16(n as i16),
+        slow_motion,
+        saturated: false,
+        snapped: 0,
     }
 }

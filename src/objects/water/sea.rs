@@ -1,7 +1,7 @@
 //! The sea a 3D game's boats ride: a grid of water columns whose heights carry waves, drawn
 //! as a smooth surface, and the hulls that float on it.
 
-use super::{overlap, plan};
+use super::{overlap, plan, stepped};
 use crate::curves::surface::{SurfaceTable, sample};
 use crate::error::{check_non_negative, check_points, check_positive, invalid};
 use crate::physics::system::StepInfo;
@@ -274,20 +274,12 @@ impl<S: Scalar, const U: usize, const V: usize> Sea<S, U, V> {
                 "each lighter than the water its box displaces (density · width · length · height)",
             ));
         }
-        let mut info = StepInfo {
-            substeps: 0,
-            simulated: S::ZERO,
-            slow_motion: false,
-            saturated: false,
-            snapped: 0,
-        };
         if dt == S::ZERO {
-            return Ok(info);
+            return Ok(stepped(0, S::ZERO, false));
         }
         // Substeps keep `c · h / spacing ≤ 7/11`, just under `0.9 / √2`.
         let rate = self.speed_of_waves / self.spacing;
         let (n, h, slow) = plan(dt, rate, (7, 11));
-        info.slow_motion = slow;
         let saved = (self.heights, self.velocities, *hulls);
         for _ in 0..n {
             self.substep(h, rate * rate, gravity, hulls);
@@ -303,9 +295,7 @@ impl<S: Scalar, const U: usize, const V: usize> Sea<S, U, V> {
             (self.heights, self.velocities, *hulls) = saved;
             return Err(Error::Diverged);
         }
-        info.substeps = n as u16;
-        info.simulated = h * S::from_i16(n as i16);
-        Ok(info)
+        Ok(stepped(n, h, slow))
     }
 
     /// One substep of `h`; `stiffness` is `(c / spacing)²`.
