@@ -183,9 +183,10 @@ impl<P: Point> Contacts<'_, P> {
 
 /// Writes into `boxes[cv · (U − 1) + cu]` a box that holds cell `(cu, cv)` of the surface
 /// `smoothing` draws through the `U × V` grid `pos`: the box of the cell's Bézier control
-/// points (each row's span through the cell, then each of those control points' columns
-/// along `v`), which hold the cell (the convex hull property); one Bézier's cells all get the
-/// whole net's box. `None` when a row or column is out of range.
+/// points (each row's span through the cell, every row drawn once, then each of those
+/// control points' columns along `v`), which hold the cell (the convex hull property); one
+/// Bézier's cells all get the whole net's box. Stack: `4·U·V` points. `None` when a row or
+/// column is out of range.
 fn cell_boxes<P: Point, const U: usize, const V: usize>(
     smoothing: Smoothing,
     pos: &[P],
@@ -196,19 +197,21 @@ fn cell_boxes<P: Point, const U: usize, const V: usize>(
         boxes.fill(Aabb::from_points(pos)?);
         return Some(());
     }
-    for cu in 0..U - 1 {
-        let mut columns = [[P::default(); V]; 4];
-        let mut controls = 0;
-        for (j, row) in rows.iter().enumerate().take(V) {
-            let curve = Smoothed::open(smoothing, row).ok()?;
+    // Each row's spans' control points, every row drawn once: `spans[j][cu]`.
+    let mut spans = [[[P::default(); 4]; U]; V];
+    let mut controls = 0;
+    for (row, spans) in rows.iter().zip(spans.iter_mut()) {
+        let curve = Smoothed::open(smoothing, row).ok()?;
+        for (cu, span) in spans.iter_mut().enumerate().take(U - 1) {
             let points = curve.span_points(cu);
             controls = points.len().min(4);
-            for (column, &p) in columns.iter_mut().zip(points) {
-                column[j] = p;
-            }
+            span[..controls].copy_from_slice(&points[..controls]);
         }
-        for (k, column) in columns[..controls].iter().enumerate() {
-            let curve = Smoothed::open(smoothing, column).ok()?;
+    }
+    for cu in 0..U - 1 {
+        for k in 0..controls {
+            let column: [P; V] = core::array::from_fn(|j| spans[j][cu][k]);
+            let curve = Smoothed::open(smoothing, &column).ok()?;
             for cv in 0..V - 1 {
                 let b = Aabb::from_points(curve.span_points(cv))?;
                 let cell = &mut boxes[cv * (U - 1) + cu];
