@@ -16,6 +16,8 @@
 
 #[path = "common/boats.rs"]
 mod boats;
+#[path = "common/buoys.rs"]
+mod buoys;
 #[path = "common/raster.rs"]
 mod raster;
 #[path = "common/sea.rs"]
@@ -197,10 +199,23 @@ fn grid_normals<const U: usize, const V: usize>(p: &[Vec3<f32>]) -> Vec<Vec3<f32
 /// A sail's drawn points and normals, and its counts a direction.
 type Drawn = (Vec<Vec3<f32>>, Vec<Vec3<f32>>, usize, usize);
 
+/// The lifebuoys afloat, and the tables they are drawn with.
+type Floating = (Vec<buoys::Buoy>, buoys::Tables);
+
 /// The fleet on its sea in a `w × h` image, each boat riding the waves with its drawn sail.
-fn draw_fleet(w: usize, h: usize, boats: &[Boat], drawn: &[Drawn], harbour: &Harbour) -> Image {
+fn draw_fleet(
+    w: usize,
+    h: usize,
+    boats: &[Boat],
+    drawn: &[Drawn],
+    harbour: &Harbour,
+    floating: &Floating,
+) -> Image {
     let mut img = seascape(w, h, fleet_view(h).0, None);
     harbour.draw(&mut img);
+    for buoy in &floating.0 {
+        buoy.draw(&mut img, &floating.1);
+    }
     for (k, (boat, (p, n, nu, nv))) in boats.iter().zip(drawn).enumerate() {
         let cam = riding(fleet_camera(w, h, boat.at, boat.yaw), harbour.lift(k));
         draw_boat(&mut img, &cam);
@@ -243,6 +258,7 @@ fn main() {
         eprintln!("cloth: {e}");
         std::process::exit(2);
     });
+    let mut floating: Floating = (buoys::buoys(&harbour), buoys::tables());
     let (mut pos, mut nor) = (
         vec![Vec3::default(); DRAWN * DRAWN],
         vec![Vec3::default(); DRAWN * DRAWN],
@@ -256,7 +272,7 @@ fn main() {
         lift: [0.0; 3],
     };
     println!(
-        "frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of {}: a step + surfaces (ms) | mean samples a sail | the sea's step (ms) | raster (ms)",
+        "frame | 8x8 step+surface (µs) | 20x20 step (µs) | fleet of {}: a step + surfaces (ms) | mean samples a sail | the sea's step (ms) | 3 lifebuoys' step (ms) | raster (ms)",
         args.boats
     );
     let mut last = Vec::new();
@@ -332,25 +348,35 @@ fn main() {
             drawn.push((p, n, nu, nv));
         }
         let fleet_ms = (stepping / STEPS_PER_FRAME as f64 + drawing) * 1e3;
-        let t = Instant::now();
+        let (mut sea_s, mut buoys_s) = (0.0, 0.0);
         for _ in 0..STEPS_PER_FRAME {
+            let t = Instant::now();
             harbour.step(STEP).expect("the sea stays stable");
+            sea_s += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            for buoy in &mut floating.0 {
+                buoy.step(STEP, &harbour).expect("the buoy stays stable");
+            }
+            buoys_s += t.elapsed().as_secs_f64();
         }
-        let sea_ms = t.elapsed().as_secs_f64() * 1e3 / STEPS_PER_FRAME as f64;
+        let (sea_ms, buoys_ms) = (
+            sea_s * 1e3 / STEPS_PER_FRAME as f64,
+            buoys_s * 1e3 / STEPS_PER_FRAME as f64,
+        );
         let t = Instant::now();
-        let img = draw_fleet(w, h, &boats, &drawn, &harbour);
+        let img = draw_fleet(w, h, &boats, &drawn, &harbour, &floating);
         let raster_ms = t.elapsed().as_secs_f64() * 1e3;
         let path = args.out.join(format!("fleet_{frame:03}.ppm"));
         img.write_ppm(&path)
             .unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
         let per = |s: f64| s * 1e6 / STEPS_PER_FRAME as f64;
         println!(
-            "{frame:5} | {:21.1} | {:15.1} | {fleet_ms:35.2} | {:19.0} | {sea_ms:23.3} | {raster_ms:.1}",
+            "{frame:5} | {:21.1} | {:15.1} | {fleet_ms:35.2} | {:19.0} | {sea_ms:23.3} | {buoys_ms:27.3} | {raster_ms:.1}",
             per(t_small),
             per(t_big),
             samples as f64 / boats.len() as f64,
         );
-        pair.push(draw_fleet(2 * w, h, &boats, &drawn, &harbour));
+        pair.push(draw_fleet(2 * w, h, &boats, &drawn, &harbour, &floating));
         last = pair;
     }
     if slow > 0 {

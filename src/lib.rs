@@ -167,11 +167,12 @@
 //! # Modules
 //!
 //! - [`prelude`]: everything the example above uses, in one import.
-//! - [`system`]: the [`MassSpring`] system that [`Rope`] and [`Cloth`] are made of;
+//! - [`system`]: the [`MassSpring`] system that [`Rope`], [`Cloth`] and [`Torus`] are made of;
 //!   [`Settings`] and [`Accuracy`] configure it.
 //! - [`integrator`]: eight time integrators, one type each, behind the [`Integrator`] trait.
 //! - [`spring`]: [`Material`]s and the topologies that lay springs out.
-//! - [`force`]: wind, anchor springs and the [`ForceField`](force::ForceField) trait.
+//! - [`force`]: wind, anchor springs, the gas in a closed body and the
+//!   [`ForceField`](force::ForceField) trait.
 //! - [`smooth`]: a row of particles as one Bézier, a B-spline or a Catmull-Rom spline.
 //! - [`curve`], [`patch`], [`sampler`], [`lod`]: Bézier curves and patches, the samplers
 //!   that draw them, and Wang's formula for how many points to draw.
@@ -263,6 +264,7 @@ pub use number::q16::Q16;
 pub use number::scalar::Scalar;
 pub use objects::cloth::Cloth;
 pub use objects::rope::Rope;
+pub use objects::torus::Torus;
 pub use physics::integrator::Integrator;
 pub use physics::settings::{Accuracy, Settings};
 pub use physics::spring::Material;

@@ -96,6 +96,18 @@ impl Harbour {
         ]
     }
 
+    /// The sea's surface under `(x, z)` as a plane: its mean height over a spacing's square
+    /// there, and its slopes along x and z (for what floats there and is not a hull).
+    pub fn surface_plane(&self, x: f32, z: f32) -> [f32; 3] {
+        let d = SPACING;
+        let under = |dx: f32, dz: f32| self.sea.surface_under((x + dx, z + dz), (d, d));
+        [
+            under(0.0, 0.0),
+            (under(d, 0.0) - under(-d, 0.0)) / (2.0 * d),
+            (under(0.0, d) - under(0.0, -d)) / (2.0 * d),
+        ]
+    }
+
     /// The sea drawn into `img` (depth-tested with the boats' cameras): its surface through
     /// every column, Lambert-shaded with its normals, paler with distance, seen from a
     /// pinhole `EYE` metres up at the origin looking along z.

@@ -40,6 +40,8 @@ use crate::{Error, Point, Scalar, Smoothing, Vec3};
 #[derive(Clone, Debug)]
 pub struct SurfaceTable<S, const K: usize, const N: usize> {
     smoothing: Smoothing,
+    /// Round a ring of particles ([`closed`](Self::closed)).
+    closed: bool,
     count: usize,
     weights: [[S; K]; N],
     /// `d/du` of the weights, `u` over the whole row (`0..=1`).
@@ -70,11 +72,43 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
     /// # Errors
     /// [`Error::InvalidParameter`] for `count` outside `2..=N`.
     pub fn new(smoothing: Smoothing, count: usize) -> Result<Self, Error> {
+        Self::build(smoothing, count, false)
+    }
+
+    /// The table for `count` samples, `2 ≤ count ≤ N`, around a ring of `K` particles (a
+    /// direction that closes on itself: round a [`Torus`](crate::Torus), or a cloth rolled
+    /// into a tube): `K` spans, the last from particle `K - 1` back to particle 0, sampled at
+    /// `u = k / (count - 1)`, so that the last sample lies on the first (a mesh's seam). A
+    /// natural spline solves the periodic system. In fixed point the count is rounded down
+    /// as [`new`](Self::new) does, with `K` spans.
+    ///
+    /// ```
+    /// use dunas::{Smoothing, surface::SurfaceTable};
+    /// let table = SurfaceTable::<f32, 8, 33>::closed(Smoothing::CatmullRom, 33)?;
+    /// assert!(table.is_closed() && table.count() == 33); // 8 spans of 4 segments
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `count` outside `2..=N`, fewer than 3 particles, or
+    /// [`Smoothing::Bezier`] (one Bézier does not close on itself).
+    pub fn closed(smoothing: Smoothing, count: usize) -> Result<Self, Error> {
+        if smoothing == Smoothing::Bezier {
+            return Err(invalid("smoothing", "a spline or Polyline to close a ring"));
+        }
+        if K < 3 {
+            return Err(invalid("particle count", "at least 3 to close a ring"));
+        }
+        Self::build(smoothing, count, true)
+    }
+
+    fn build(smoothing: Smoothing, count: usize, closed: bool) -> Result<Self, Error> {
         const { assert!(K >= 2 && K <= 255, "a surface row has 2 to 255 particles") };
         if !(2..=N).contains(&count) {
             return Err(invalid("count", "from 2 to the table's particle count"));
         }
         let spans = match smoothing {
+            _ if closed => K,
             Smoothing::Bezier => 1,
             _ => K - 1,
         };
@@ -86,6 +120,7 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
         let zero = S::ZERO;
         let mut table = SurfaceTable {
             smoothing,
+            closed,
             count,
             weights: [[zero; K]; N],
             slopes: [[zero; K]; N],
@@ -106,8 +141,8 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
             } else {
                 (scaled / last, S::ratio((scaled % last) as u32, last as u32))
             };
-            basis.weights(false, span, t, &mut table.weights[k]);
-            basis.slopes(false, span, t, &mut table.slopes[k]);
+            basis.weights(closed, span, t, &mut table.weights[k]);
+            basis.slopes(closed, span, t, &mut table.slopes[k]);
             for s in &mut table.slopes[k] {
                 *s = *s * per_span;
             }
@@ -138,6 +173,12 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
     #[inline]
     pub fn smoothing(&self) -> Smoothing {
         self.smoothing
+    }
+
+    /// Whether the table goes round a ring of particles ([`closed`](Self::closed)).
+    #[inline]
+    pub fn is_closed(&self) -> bool {
+        self.closed
     }
 
     /// `(Σ w_i p_i, Σ w'_i p_i, Σ w_i q_i)` of sample `k` over `points` and `others` (the
@@ -247,7 +288,7 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     }
     let mut net = *grid;
     if tu.smoothing == Smoothing::NaturalSpline {
-        natural_grid(&mut net);
+        natural_net(&mut net, tu.closed, tv.closed);
     }
     // Rows first: every particle row's points and u-slopes at the nu samples, stored by
     // sample (column `a` holds row j's point at sample a), so that columns read in a line.
@@ -279,12 +320,21 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
 /// Turns a grid of particles into the B-spline control net whose surface passes through
 /// every particle: the natural spline's solve along every row, then every column.
 pub(crate) fn natural_grid<P: Point, const U: usize, const V: usize>(grid: &mut [[P; U]; V]) {
+    natural_net(grid, false, false);
+}
+
+/// [`natural_grid`] with rows (`closed_u`) or columns (`closed_v`) that close on themselves.
+fn natural_net<P: Point, const U: usize, const V: usize>(
+    grid: &mut [[P; U]; V],
+    closed_u: bool,
+    closed_v: bool,
+) {
     for row in grid.iter_mut() {
-        natural_controls(row, false);
+        natural_controls(row, closed_u);
     }
     for i in 0..U {
         let mut column: [P; V] = core::array::from_fn(|j| grid[j][i]);
-        natural_controls(&mut column, false);
+        natural_controls(&mut column, closed_v);
         for (row, c) in grid.iter_mut().zip(column) {
             row[i] = c;
         }

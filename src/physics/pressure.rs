@@ -2,7 +2,7 @@
 
 use super::force::{Accelerations, Bodies, ForceField};
 use crate::error::check_non_negative;
-use crate::{Error, Scalar, Vec2};
+use crate::{Error, Point, Scalar, Vec2, Vec3};
 
 /// The gas inside a closed loop of particles (a 2D soft body): it pushes every edge of the
 /// loop outwards with the pressure `p = amount / area`, Boyle's law at a constant temperature
@@ -143,5 +143,156 @@ impl<S: Scalar> ForceField<Vec2<S>> for Pressure<S> {
             out.add_force(i, push);
             out.add_force(j, push);
         }
+    }
+}
+
+/// The gas inside a closed surface of particles (a 3D soft body: an inner tube, a swim
+/// ring, a balloon): Boyle's law in 3D, `p = amount / volume` (`amount` is `n R T`, pressure
+/// × volume, in force × length), pushing every particle along the volume's gradient. It is
+/// the 3D [`Pressure`]: the force is the gradient of `−amount · ln(volume)`, it stores and
+/// returns energy, and its pushes sum to zero, so the gas never moves the body as a whole.
+///
+/// The surface is the system's grid closed both ways (a [`Torus`](crate::Torus)): rows of
+/// [`Bodies::columns`] particles, each row a ring, the last row joined to the first, at
+/// least 3×3. The volume is that of the grid's quadrilaterals, each the mean of its two
+/// splits into triangles (so the volume is the same whichever diagonal a renderer draws),
+/// signed: positive when `∂u × ∂v` (along a row, then to the next row) points out. The push
+/// is outwards either way. A volume within rounding of 0 gets no push that evaluation, and
+/// neither does a system whose particles are not such a grid; a `Q16` volume past the
+/// format's range gets none and the step reports it `saturated`. Cost: six cross products
+/// a particle, then one division.
+///
+/// Measured (`tests/suite/pressure.rs`): at rest, an 8×8 torus's springs balance its gas by
+/// the virial identity (`Σ k (l − r) l = 3 · amount`) within 1%; its pushes are the volume's
+/// gradient within 1e-6 of a finite difference in `f64`.
+///
+/// ```
+/// use dunas::force::VolumePressure;
+/// use dunas::prelude::*;
+/// use dunas::Torus;
+///
+/// // An inner tube, 1 m round its ring, 0.3 m round its tube, 2 kg, blown up in no gravity.
+/// let m = Material { stiffness: 300.0, damping: 1.0 };
+/// let settings = Settings { damping: 1.0, ..Settings::default() };
+/// let mut tube: Torus<f32, 8, 6> = Torus::new(Vec3::default(), 1.0, 0.3, 2.0, [m, m, m], settings)?;
+/// let before = tube.volume();
+/// let mut gas = VolumePressure::new(20.0)?; // 20 N·m: 11 N/m² of pressure at its 1.8 m³
+/// for _ in 0..120 {
+///     let _ = tube.step_with(1.0 / 60.0, &mut gas)?;
+/// }
+/// assert!(tube.volume() > before); // blown up
+/// # Ok::<(), dunas::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumePressure<S> {
+    amount: S,
+}
+
+impl<S: Scalar> VolumePressure<S> {
+    /// Gas of `amount` (`n R T`: pressure × volume, ≥ 0; 0 is no gas).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a negative, NaN or infinite amount.
+    pub fn new(amount: S) -> Result<Self, Error> {
+        Ok(VolumePressure {
+            amount: check_non_negative(amount, "amount")?,
+        })
+    }
+
+    /// The gas that pushes with `pressure` at `volume`: `amount = pressure · volume`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a negative, NaN or infinite pressure, volume or
+    /// product (a `Q16` product past the format's range).
+    pub fn at(pressure: S, volume: S) -> Result<Self, Error> {
+        check_non_negative(pressure, "pressure")?;
+        check_non_negative(volume, "volume")?;
+        Self::new(pressure * volume)
+    }
+
+    /// The gas's amount, `n R T`.
+    pub fn amount(&self) -> S {
+        self.amount
+    }
+
+    /// Lets the gas out: see [`Pressure::pop`].
+    pub fn pop(&mut self) {
+        self.amount = S::ZERO;
+    }
+
+    /// The volume the closed grid `points` (rows of `columns` particles, see the type's
+    /// docs) encloses, signed; 0 when `points` is not such a grid; in `Q16`, the format's
+    /// limit (not finite) when it does not fit.
+    pub fn signed_volume(points: &[Vec3<S>], columns: usize) -> S {
+        let mut twelve = S::ZERO;
+        let fits = quads(points, columns, |_, [a, b, c, d]| {
+            let cd = c.cross(d);
+            twelve += a.dot(b.cross(c) + cd + b.cross(d)) + b.dot(cd);
+            twelve.is_finite()
+        });
+        if !fits {
+            return twelve;
+        }
+        twelve * S::ratio(1, 12)
+    }
+}
+
+/// Calls `f(corners, [a, b, c, d])` for every quadrilateral of the closed grid `x` (rows of
+/// `columns`), corners `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` wrapping, as flat indices
+/// and as positions relative to `x[0]` (so that `Q16` products stay small), until `f`
+/// returns `false`; returns whether every call returned `true` (`true` for no grid).
+fn quads<S: Scalar>(
+    x: &[Vec3<S>],
+    columns: usize,
+    mut f: impl FnMut([usize; 4], [Vec3<S>; 4]) -> bool,
+) -> bool {
+    let rows = x.len().checked_div(columns).unwrap_or(0);
+    if columns < 3 || rows < 3 || rows * columns != x.len() {
+        return true;
+    }
+    let origin = x[0];
+    for j in 0..rows {
+        let next_row = if j + 1 == rows { 0 } else { (j + 1) * columns };
+        for i in 0..columns {
+            let next = if i + 1 == columns { 0 } else { i + 1 };
+            let corners = [
+                j * columns + i,
+                j * columns + next,
+                next_row + next,
+                next_row + i,
+            ];
+            if !f(corners, corners.map(|k| x[k] - origin)) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+impl<S: Scalar> ForceField<Vec3<S>> for VolumePressure<S> {
+    fn apply(&mut self, _: S, bodies: &Bodies<'_, Vec3<S>>, out: &mut Accelerations<'_, Vec3<S>>) {
+        let twelve = Self::signed_volume(bodies.pos, bodies.columns) * S::from_i16(12);
+        if !twelve.is_finite() {
+            out.saturated = true;
+            return;
+        }
+        if twelve.abs() <= S::EPSILON * S::from_i16(16) || self.amount == S::ZERO {
+            return;
+        }
+        // amount / volume times the volume's gradient, the gradient's 1/12 taken in.
+        let scale = self.amount / twelve;
+        if !scale.is_finite() {
+            out.saturated = true;
+            return;
+        }
+        quads(bodies.pos, bodies.columns, |k, [a, b, c, d]| {
+            let (ab, ac, ad) = (a.cross(b), a.cross(c), a.cross(d));
+            let (bc, bd, cd) = (b.cross(c), b.cross(d), c.cross(d));
+            out.add_force(k[0], (bc + cd + bd) * scale);
+            out.add_force(k[1], (cd - ac - ad) * scale);
+            out.add_force(k[2], (ab - ad - bd) * scale);
+            out.add_force(k[3], (ab + ac + bc) * scale);
+            true
+        });
     }
 }

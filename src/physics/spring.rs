@@ -9,7 +9,7 @@ use crate::error::invalid;
 use crate::error::{check_index, check_non_negative, check_positive};
 use crate::{Error, Point, Scalar};
 
-pub use super::grid_springs::GridSprings;
+pub use super::grid_springs::{GridSprings, TorusSprings};
 
 /// A spring between particles `a` and `b`, relaxed at length `rest`.
 #[derive(Clone, Copy, Debug, PartialEq)]

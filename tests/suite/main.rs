@@ -30,5 +30,6 @@ mod sea;
 mod snapshots;
 mod soak;
 mod spline_rope;
+mod torus;
 mod water;
 mod xml;
