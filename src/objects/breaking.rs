@@ -35,7 +35,7 @@ use crate::geometry::segment::crossing;
 use crate::physics::integrator::Integrator;
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Snap, Springs};
-use crate::{Cloth, Error, MassSpring, Point, Rope, Scalar, Vec2};
+use crate::{Cloth, Error, MassSpring, Point, Rope, Scalar, Torus, Vec2};
 
 /// One piece of a drawn rope: its particles and the points [`Rope::draw`] wrote for it.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -228,9 +228,7 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
     /// # Errors
     /// As [`Snap::check`], for the first bad limit; nothing changes then.
     pub fn set_snap(&mut self, limits: [Snap<P::Scalar>; 3]) -> Result<(), Error> {
-        for limit in limits {
-            limit.check()?;
-        }
+        let limits = checked(limits)?;
         self.with_topology(|g| g.snap = limits);
         Ok(())
     }
@@ -248,4 +246,28 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
         let flat: &[P] = x.as_flattened();
         Ok(self.break_springs(|g| g.tear_across(flat, from, to)))
     }
+}
+
+impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Torus<S, U, V, I> {
+    /// Sets when the structural, shear and bending springs tear ([`Snap`] per class), as
+    /// [`Cloth::set_snap`]: a torus blown past what its springs hold bursts. The gas cannot
+    /// see the springs: when a step reports
+    /// [`StepInfo::snapped`](crate::physics::system::StepInfo::snapped), let it out
+    /// ([`VolumePressure::pop`](crate::force::VolumePressure::pop)).
+    ///
+    /// # Errors
+    /// As [`Snap::check`], for the first bad limit; nothing changes then.
+    pub fn set_snap(&mut self, limits: [Snap<S>; 3]) -> Result<(), Error> {
+        let limits = checked(limits)?;
+        self.with_topology(|t| t.snap = limits);
+        Ok(())
+    }
+}
+
+/// `limits` when every one passes [`Snap::check`].
+fn checked<S: Scalar>(limits: [Snap<S>; 3]) -> Result<[Snap<S>; 3], Error> {
+    for limit in limits {
+        limit.check()?;
+    }
+    Ok(limits)
 }

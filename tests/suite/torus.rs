@@ -8,7 +8,7 @@ use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::force::VolumePressure;
 use dunas::integrator::DirectSprings;
-use dunas::spring::{Material, Topology};
+use dunas::spring::{Material, Snap, Topology};
 use dunas::surface::SurfaceTable;
 use dunas::{Error, Integrator, Point, Q16, Scalar, Settings, Smoothing, Torus, Vec3};
 
@@ -374,4 +374,44 @@ fn bad_input_is_refused_and_q16_follows_f64() {
     let (vq, vf) = (fixed.volume().to_f64(), float.volume());
     eprintln!("Q16 volume {vq:.5} m³ against f64 {vf:.5} m³");
     assert!((vq - vf).abs() <= 0.01 * vf, "{vq} against {vf}");
+}
+
+/// Pumped past what its springs hold (its gas growing every frame), a torus whose springs
+/// snap (`Snap::Stretch`) bursts: the step reports the torn springs, the game lets the gas
+/// out (`pop`), and the torus shrinks back to the shape its springs hold, nothing turning
+/// NaN.
+#[test]
+fn an_overblown_torus_bursts_and_shrinks() {
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping: 0.5,
+        ..Settings::default()
+    };
+    let mut t = tube(400.0, settings);
+    t.set_snap([Snap::Stretch(1.2); 3]).unwrap();
+    let floor =
+        [Collider::half_space(Vec3::new(0.0, -0.5, 0.0), Vec3::new(0.0, 1.0, 0.0)).unwrap()];
+    let contacts = Contacts::new(&floor, 0.01, Touch::Particles).unwrap();
+    let mut gas = VolumePressure::new(0.0).unwrap();
+    let (start, mut burst) = (t.volume(), None);
+    for frame in 0..240 {
+        if burst.is_none() {
+            gas = VolumePressure::new(10.0 * frame as f64).unwrap();
+        }
+        let info = t
+            .step_touching_particles(1.0 / 60.0, &mut gas, &contacts)
+            .unwrap();
+        if info.snapped > 0 && burst.is_none() {
+            burst = Some((frame, info.snapped, t.volume()));
+            gas.pop();
+        }
+        assert!(t.positions().iter().all(|p| p.is_finite()));
+    }
+    let (frame, snapped, at_burst) = burst.expect("it bursts");
+    eprintln!(
+        "burst at frame {frame} ({snapped} springs) at {at_burst:.3} m³ from {start:.3} m³; then {:.3} m³",
+        t.volume()
+    );
+    assert_eq!(gas.amount(), 0.0);
+    assert!(at_burst > start && t.volume().abs() < at_burst);
 }
