@@ -136,6 +136,8 @@ pub(super) fn spread<P: Point>(
 /// particle weights.
 pub(super) struct SurfacePoint<S, const U: usize, const V: usize> {
     pub(super) smoothing: Smoothing,
+    /// Rows and columns close on themselves (a torus).
+    closed: bool,
     pub(super) wu: [S; U],
     pub(super) wv: [S; V],
     /// The columns and rows whose weights are not zero (all of them for one Bézier or a
@@ -154,10 +156,12 @@ fn nonzero<S: Scalar>(w: &[S]) -> core::ops::Range<usize> {
 }
 
 impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
-    /// A point of the surface `smoothing` draws, not yet placed.
-    pub(super) fn new(smoothing: Smoothing) -> Self {
+    /// A point of the surface `smoothing` draws (`closed`: round a torus's rings both
+    /// ways), not yet placed.
+    pub(super) fn new(smoothing: Smoothing, closed: bool) -> Self {
         SurfacePoint {
             smoothing,
+            closed,
             wu: [S::ZERO; U],
             wv: [S::ZERO; V],
             support: (0..0, 0..0),
@@ -169,8 +173,8 @@ impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
     pub(super) fn at(&mut self, (cu, cv): (usize, usize), (u, v): (S, S)) {
         let (su, tu) = locate(self.smoothing, cu, u, U);
         let (sv, tv) = locate(self.smoothing, cv, v, V);
-        self.smoothing.weights(false, su, tu, &mut self.wu);
-        self.smoothing.weights(false, sv, tv, &mut self.wv);
+        self.smoothing.weights(self.closed, su, tu, &mut self.wu);
+        self.smoothing.weights(self.closed, sv, tv, &mut self.wv);
         self.support = (nonzero(&self.wu), nonzero(&self.wv));
     }
 
@@ -199,13 +203,20 @@ impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
         (cu, cv): (usize, usize),
         overshoot: S,
     ) -> Option<Aabb<P>> {
-        let support = |c: usize, n: usize| match self.smoothing {
-            Smoothing::Bezier => 0..n,
-            _ => c.saturating_sub(1)..(c + 3).min(n),
+        // The particles a cell's points weigh: all for one Bézier, else the cell's corners
+        // and one more each side (wrapping round a closed grid).
+        let support = |c: usize, n: usize| {
+            let (first, end) = match self.smoothing {
+                Smoothing::Bezier => (0, n),
+                _ if self.closed => (c + n - 1, c + n + 3),
+                _ => (c.saturating_sub(1), (c + 3).min(n)),
+            };
+            (first..end).map(move |i| i % n)
         };
         let mut hull: Option<Aabb<P>> = None;
         for j in support(cv, V) {
-            for &p in &points[j * U..][support(cu, U)] {
+            for i in support(cu, U) {
+                let p = points[j * U + i];
                 hull = Some(hull.map_or(Aabb::point(p), |b| b.including(p)));
             }
         }

@@ -133,8 +133,8 @@ impl<P: Point> Contacts<'_, P> {
             *b = b.grown(self.thickness);
             *o = c;
         }
-        let mut at_a = SurfacePoint::<P::Scalar, U, V>::new(smoothing);
-        let mut at_b = SurfacePoint::<P::Scalar, U, V>::new(smoothing);
+        let mut at_a = SurfacePoint::<P::Scalar, U, V>::new(smoothing, false);
+        let mut at_b = SurfacePoint::<P::Scalar, U, V>::new(smoothing, false);
         let gap = self.thickness + self.thickness;
         let mut deepest = zero;
         let _ = sweep(&boxes[..cells], &mut order[..cells], |a, b| {

@@ -82,7 +82,9 @@ pub enum Touch {
     Particles,
     /// On what this smoothing draws through the particles: a rope's curve, or a cloth's
     /// surface (the smoothing along both grid directions; [`Smoothing::Bezier`] is the
-    /// cloth's [`patch`](crate::Cloth::patch)). Other systems test their particles.
+    /// cloth's [`patch`](crate::Cloth::patch)), or a [`Torus`](crate::Torus)'s closed surface
+    /// (its particles for [`Smoothing::Bezier`], which cannot close). Other systems test
+    /// their particles.
     Drawn(Smoothing),
     /// On the closed curve this smoothing draws through a rope whose particles form a loop
     /// ([`Smoothed::closed`]); the particles for [`Smoothing::Bezier`], which cannot close,
@@ -569,12 +571,13 @@ impl<'a, P: Point> Contacts<'a, P> {
         vel: &mut [[P; U]; V],
         inv_mass: &[[P::Scalar; U]; V],
         (h, lag): (P::Scalar, P::Scalar),
+        closed: bool,
     ) {
         // The points whose boxes hold the cells: the particles, or a natural spline's
         // control net (it passes through the particles but bulges past them).
         let mut controls = (self.touch == Touch::Drawn(Smoothing::NaturalSpline)).then(|| {
             let mut net = *pos;
-            crate::curves::surface::natural_grid(&mut net);
+            crate::curves::surface::natural_net(&mut net, closed, closed);
             net
         });
         let (pos, vel, inv_mass) = (
@@ -598,33 +601,39 @@ impl<'a, P: Point> Contacts<'a, P> {
                 self.surface_colliders::<U, V>(
                     (&mut *pos, &mut *vel, inv_mass),
                     (h, lag),
-                    drawn,
+                    (drawn, closed),
                     &mut controls,
                 );
             } else {
                 self.resolve_particles(pos, vel, inv_mass, (h, lag));
             }
-            let parts = (&mut *pos, &mut *vel, inv_mass);
-            Some(self.resolve_self_surface::<U, V>(parts, h, drawn.0, &mut controls))
+            // Self-contact walks an open grid's cells: a closed one has none.
+            (!closed).then(|| {
+                let parts = (&mut *pos, &mut *vel, inv_mass);
+                self.resolve_self_surface::<U, V>(parts, h, drawn.0, &mut controls)
+            })
         });
     }
 
     /// Pushes the surface `drawn` (its smoothing and its cells' overshoot) through the
-    /// particles `pos` of a `U × V` grid out of every collider; `controls`: a natural
-    /// spline's control net, kept up to date.
+    /// particles `pos` of a `U × V` grid (`closed`: its rows and columns close on themselves,
+    /// a torus) out of every collider; `controls`: a natural spline's control net, kept up
+    /// to date.
     fn surface_colliders<const U: usize, const V: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P], &mut [P], &[P::Scalar]),
         (h, lag): (P::Scalar, P::Scalar),
-        (smoothing, overshoot): (Smoothing, P::Scalar),
+        ((smoothing, overshoot), closed): ((Smoothing, P::Scalar), bool),
         controls: &mut Option<[[P; U]; V]>,
     ) {
-        let mut surface = SurfacePoint::<P::Scalar, U, V>::new(smoothing);
+        let mut surface = SurfacePoint::<P::Scalar, U, V>::new(smoothing, closed);
+        let columns = if closed { U } else { U - 1 };
+        let rows = if closed { V } else { V - 1 };
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = self.offset(k, collider, lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
-            for cell in 0..(U - 1) * (V - 1) {
-                let (cu, cv) = (cell % (U - 1), cell / (U - 1));
+            for cell in 0..columns * rows {
+                let (cu, cv) = (cell % columns, cell / columns);
                 let points = controls.as_ref().map_or(&*pos, |c| c.as_flattened());
                 let Some(hull) = surface.cell_bounds(points, (cu, cv), overshoot) else {
                     continue;
@@ -662,7 +671,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                     if let Some(net) = controls {
                         let grid = pos.as_chunks::<U>().0;
                         *net = core::array::from_fn(|j| grid[j]);
-                        crate::curves::surface::natural_grid(net);
+                        crate::curves::surface::natural_net(net, closed, closed);
                     }
                 }
             }

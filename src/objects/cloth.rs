@@ -147,7 +147,7 @@ impl<P: Point, const U: usize, const V: usize, I: Integrator> Cloth<P, U, V, I> 
     ) -> Result<StepInfo<P::Scalar>, Error> {
         self.system
             .step_contacts(dt, forces, contacts, true, |state, inv_mass, times| {
-                contacts.resolve_surface(&mut state.pos, &mut state.vel, inv_mass, times)
+                contacts.resolve_surface(&mut state.pos, &mut state.vel, inv_mass, times, false)
             })
     }
 
