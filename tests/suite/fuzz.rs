@@ -44,7 +44,7 @@ enum Call {
     DrawnLength(f64),
 }
 
-fn hostile() -> impl Strategy<Value = f64> {
+pub(super) fn hostile() -> impl Strategy<Value = f64> {
     prop_oneof![
         3 => -100.0..100.0f64,
         2 => 0.0..0.1f64,
@@ -55,7 +55,7 @@ fn hostile() -> impl Strategy<Value = f64> {
     ]
 }
 
-fn index() -> impl Strategy<Value = usize> {
+pub(super) fn index() -> impl Strategy<Value = usize> {
     prop_oneof![4 => 0..8usize, 1 => prop::sample::select(vec![8, 9, usize::MAX])]
 }
 
@@ -205,7 +205,7 @@ fn holds_up<S: Scalar>(calls: &[Call]) {
 
 /// Makes each call on `rope`, then checks what the module promises: a refused call changed
 /// nothing, and every position (`state`: positions, velocities, bounds) is in range.
-fn survives<R: std::fmt::Debug, C: std::fmt::Debug, P: Point>(
+pub(super) fn survives<R: std::fmt::Debug, C: std::fmt::Debug, P: Point>(
     rope: &mut R,
     calls: &[C],
     apply: impl Fn(&mut R, &C) -> Result<(), Error>,
@@ -678,7 +678,7 @@ fn point<P: Point>(c: &[f64]) -> P {
 }
 
 /// Polygons are 2D: a triangle where the dimensions have one.
-trait Polygon<P: Point>: Sized {
+pub(super) trait Polygon<P: Point>: Sized {
     fn triangle(corners: [P; 3]) -> Result<Self, Error>;
 }
 
@@ -705,7 +705,7 @@ fn touch(code: u8) -> Touch {
     }
 }
 
-fn smoothing(code: u8) -> Smoothing {
+pub(super) fn smoothing(code: u8) -> Smoothing {
     [
         Smoothing::Bezier,
         Smoothing::BSpline,
@@ -715,7 +715,7 @@ fn smoothing(code: u8) -> Smoothing {
 }
 
 /// A snap limit from hostile numbers: never, a stretch ratio or a tension.
-fn snap<S: Scalar>((kind, value): (u8, f64)) -> Snap<S> {
+pub(super) fn snap<S: Scalar>((kind, value): (u8, f64)) -> Snap<S> {
     match kind % 3 {
         0 => Snap::Never,
         1 => Snap::Stretch(S::from_f64(value)),
@@ -726,7 +726,7 @@ fn snap<S: Scalar>((kind, value): (u8, f64)) -> Snap<S> {
 /// A step against colliders: its frame, colliders, thickness, where it touches and how
 /// many impulse slots it reports into.
 #[derive(Clone, Debug)]
-struct Touching {
+pub(super) struct Touching {
     dt: f64,
     colliders: Vec<ColliderSpec>,
     thickness: f64,
@@ -734,7 +734,7 @@ struct Touching {
     impulses: usize,
 }
 
-fn touching() -> impl Strategy<Value = Touching> {
+pub(super) fn touching() -> impl Strategy<Value = Touching> {
     (
         hostile(),
         prop::collection::vec(collider_spec(), 0..4),
@@ -755,7 +755,7 @@ impl Touching {
     /// Steps with `step` against the colliders (a refused collider refuses the call); the
     /// reported impulses are zero past the colliders and after a refused step, and finite
     /// unless clamped by `Q16`, which the step then reports as saturated.
-    fn run<P: Point>(
+    pub(super) fn run<P: Point>(
         &self,
         step: impl FnOnce(P::Scalar, &Contacts<'_, P>) -> Result<StepInfo<P::Scalar>, Error>,
     ) -> Result<(), Error>

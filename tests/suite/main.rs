@@ -18,6 +18,7 @@ mod contacts;
 mod evaluation;
 mod flatten;
 mod fuzz;
+mod fuzz_torus;
 mod layers;
 mod physics;
 mod ppm;
