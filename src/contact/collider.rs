@@ -385,6 +385,36 @@ impl<P: Point> Collider<P> {
         scale
     }
 
+    /// How deep a point can go into the solid and still have the surface it came in by
+    /// nearest, at least: a ball's or capsule's radius, a box's least half side, a polygon's
+    /// distance from its corners' mean to its nearest edge, the safe range for a half-space
+    /// (it has no far side). A point that moves less than this past the surface in a substep
+    /// is pushed back out the way it came.
+    pub(crate) fn depth(&self) -> P::Scalar {
+        let half = P::Scalar::ratio(1, 2);
+        match &self.solid {
+            Solid::Ball { radius, .. } | Solid::Capsule { radius, .. } => *radius,
+            Solid::HalfSpace { .. } => P::Scalar::SAFE_RANGE,
+            Solid::Box(b) => (0..P::DIM)
+                .map(|d| (b.max.coord(d) - b.min.coord(d)) * half)
+                .fold(P::Scalar::SAFE_RANGE, P::Scalar::min),
+            Solid::Polygon {
+                corners,
+                normals,
+                count,
+            } => {
+                let n = usize::from(*count);
+                let sum = corners[..n].iter().fold(P::default(), |s, &c| s + c);
+                let mean = sum * (P::Scalar::ONE / P::Scalar::from_i16(n as i16));
+                corners[..n]
+                    .iter()
+                    .zip(&normals[..n])
+                    .map(|(&c, &normal)| (c - mean).dot(normal).max(P::Scalar::ZERO))
+                    .fold(P::Scalar::SAFE_RANGE, P::Scalar::min)
+            }
+        }
+    }
+
     /// A box holding the solid (the half-space's is the whole safe range): the broad phase.
     pub fn bounds(&self) -> Aabb<P> {
         match &self.solid {

@@ -45,13 +45,17 @@
 //! with restitution 0 the pair never gains energy, whatever the mass ratio.
 //!
 //! **No tunnelling.** With a thickness `r > 0`, a step takes enough substeps that no particle
-//! moves more than `r` against a collider in one substep, judged from the speeds at the start
-//! of the frame plus what gravity adds during it (Catmull-Rom's drawn points move up to 5/4 as
-//! fast as its particles on a curve, 25/16 on a surface, which the count allows for), within
-//! [`MAX_SUBSTEPS`]. A point that moves less than `r` a substep cannot cross a collider
-//! unseen. Past the cap the frame still simulates its whole `dt` (contacts never slow time),
-//! and a point faster than `r · MAX_SUBSTEPS / dt` may cross a collider thinner than its
-//! step. A thickness of 0 gives no such guarantee.
+//! moves more than `r + d` against a collider in one substep, where `d` is how deep a point
+//! can go into that collider and still be nearest the side it came in by (a ball's or
+//! capsule's radius, a box's least half side, a polygon's distance from its corners' mean to
+//! its nearest edge; a half-space has no far side and asks for no substeps), judged from the
+//! speeds at the start of the frame plus what gravity adds during it (Catmull-Rom's drawn
+//! points move up to 5/4 as fast as its particles on a curve, 25/16 on a surface, which the
+//! count allows for), within [`MAX_SUBSTEPS`]; with self-contact, no two parts of a rope
+//! close by more than `r` a substep. A point that moves less than that a substep cannot cross
+//! a collider unseen nor come out of its far side. Past the cap the frame still simulates its
+//! whole `dt` (contacts never slow time), and a point faster than `(r + d) · MAX_SUBSTEPS /
+//! dt` may cross a collider thinner than its step. A thickness of 0 gives no such guarantee.
 //!
 //! [`MAX_SUBSTEPS`]: crate::physics::system::MAX_SUBSTEPS
 
@@ -328,18 +332,15 @@ impl<'a, P: Point> Contacts<'a, P> {
         self.touch
     }
 
-    /// Substeps per second that keep every point within the thickness of its previous place
-    /// against every collider, for particle speeds up to `speed` (0 when the thickness is 0);
-    /// `surface` when the drawn points are a surface's.
+    /// Substeps per second that keep every point, against every collider, within the
+    /// thickness and the collider's [`depth`](Collider::depth) of its previous place (so that
+    /// nothing passes through a collider or out of its far side), and, with self-contact,
+    /// two parts of a rope within the thickness; for particle speeds up to `speed` (0 when
+    /// the thickness is 0); `surface` when the drawn points are a surface's.
     pub(crate) fn rate(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
         if self.thickness <= P::Scalar::ZERO {
             return P::Scalar::ZERO;
         }
-        let collider = self
-            .colliders
-            .iter()
-            .map(|c| c.velocity().length())
-            .fold(P::Scalar::ZERO, P::Scalar::max);
         let reach = match (self.touch, surface) {
             (
                 Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom),
@@ -353,13 +354,16 @@ impl<'a, P: Point> Contacts<'a, P> {
             (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
             _ => speed,
         };
+        let colliders = self.colliders.iter().fold(P::Scalar::ZERO, |rate, c| {
+            let allowed = self.thickness + c.depth();
+            rate.max((reach + c.velocity().length()) / allowed)
+        });
         // Two parts of a rope can meet head on.
-        let reach = if self.self_friction.is_some() {
-            reach + reach
+        if self.self_friction.is_some() {
+            colliders.max((reach + reach) / self.thickness)
         } else {
-            reach
-        };
-        (reach + collider) / self.thickness
+            colliders
+        }
     }
 
     /// Pushes every particle with a mass out of every collider. `lag`: seconds from this

@@ -682,7 +682,7 @@ fn direct_chain_holds_a_whirled_rope_under_a_heavy_bob() {
 }
 
 /// A hand that whirls a `DirectChain` rope moves smoothly through a frame that contacts split
-/// into several substeps. Stepped against a floor it never reaches (whose thin contacts ask
+/// into several substeps. Stepped against a thin peg it never reaches (whose contacts ask
 /// for more substeps as the penguin speeds up), the catapult's rope swings its penguin as the
 /// rope stepped without contacts does: its largest acceleration within 1.25 times that one's.
 /// (The hand used to jump back to the frame's start at every substep: the rope flailed, its
@@ -702,7 +702,8 @@ fn direct_chain_follows_a_moving_hand_through_contact_substeps() {
         stiffness: 4000.0,
         damping: 4.0,
     };
-    let floor = [Collider::half_space(Vec2::new(0.0, -30.0), Vec2::new(0.0, 1.0)).unwrap()];
+    // A thin peg far below: the contacts ask for substeps so that nothing passes through it.
+    let floor = [Collider::ball(Vec2::new(0.0, -30.0), 0.01).unwrap()];
     let contacts = Contacts::new(&floor, 0.03, Touch::Particles).unwrap();
     let hand = |t: f32| {
         let turns = t.min(1.0) * t.min(1.0) * 0.5 + (t - 1.0).max(0.0);
