@@ -432,6 +432,59 @@ fn contacts_never_slow_time() {
     assert_eq!(info.substeps, dunas::system::MAX_SUBSTEPS);
 }
 
+/// Substeps by the collider's depth: a rope hurled at 40 m/s at a floor (a half-space, no far
+/// side) takes one substep a frame and stays above it; at a plate 2 cm thick it takes enough
+/// substeps never to move more than the thickness and the plate's half side in one, and
+/// stays above it too; at a ball of 0.3 m, fewer than at the plate. After every frame every
+/// particle is the thickness (1 cm) clear of the collider.
+#[test]
+fn substeps_follow_the_colliders_depth_and_nothing_passes_through() {
+    let settings = Settings::<Vec2<f64>>::default();
+    let material = Material {
+        stiffness: 50.0,
+        damping: 0.0,
+    };
+    let hurl = |collider: Collider<Vec2<f64>>| {
+        let mut rope: Rope<Vec2<f64>, 8> = Rope::new(
+            Vec2::new(-0.7, 1.0),
+            Vec2::new(0.7, 1.0),
+            1.0,
+            material,
+            settings,
+        )
+        .unwrap();
+        rope.let_go(0, 8.0).unwrap();
+        for i in 0..8 {
+            rope.set_velocity(i, Vec2::new(0.0, -40.0)).unwrap();
+        }
+        let colliders = [collider];
+        let contacts = Contacts::new(&colliders, 0.01, Touch::Particles).unwrap();
+        let (mut most, mut deepest) = (0, f64::MAX);
+        for _ in 0..10 {
+            most = most.max(
+                rope.step_touching(1.0 / 60.0, (), &contacts)
+                    .unwrap()
+                    .substeps,
+            );
+            for p in rope.positions() {
+                deepest = deepest.min(colliders[0].distance(*p).0);
+            }
+        }
+        (most, deepest)
+    };
+    let floor = hurl(Collider::half_space(Vec2::default(), Vec2::new(0.0, 1.0)).unwrap());
+    let plate = hurl(Collider::aabb(Vec2::new(-5.0, -0.02), Vec2::new(5.0, 0.0)).unwrap());
+    let ball = hurl(Collider::ball(Vec2::new(0.0, -0.3), 0.3).unwrap());
+    eprintln!("most substeps and least gap: floor {floor:?}, plate {plate:?}, ball {ball:?}");
+    assert_eq!(floor.0, 1);
+    // 40 m/s over a 60th of a second is 0.67 m; the plate allows 0.02 m a substep.
+    assert!(plate.0 >= 34, "{plate:?}");
+    assert!(ball.0 > 1 && ball.0 < plate.0, "{ball:?}");
+    for (what, (_, gap)) in [("floor", floor), ("plate", plate), ("ball", ball)] {
+        assert!(gap >= 0.01 - 1e-9, "{what}: {gap}");
+    }
+}
+
 /// In `Q16` an impulse past the format's range is clamped at its limit, and the step says
 /// so: a 10 000-unit weight on the rope's end landing on a floor gives it far more than the
 /// format's 32 768.
