@@ -131,13 +131,46 @@ pub trait Topology<S: Scalar> {
     /// `key` with what the springs are mixed in by `mix`: every spring's ends and stiffness
     /// (torn springs as the topology marks them), so that equal springs give equal
     /// fingerprints. What a direct solver's factor depends on besides the masses. By default
-    /// every spring, two mixes each; a topology may mix less that says as much.
+    /// every spring's ends and stiffness are [`Spread`] (a multiply or two each, none
+    /// waiting on another), then mixed in once; a topology may mix less that says as much.
     fn fingerprint(&self, key: u64, mix: impl Fn(u64, u64) -> u64) -> u64 {
-        let mut key = key;
+        let mut spread = Spread::default();
         self.for_each_spring(|a, b, _, m| {
-            key = mix(mix(key, ((a as u64) << 32) | b as u64), m.stiffness.bits());
+            spread.add(((a as u64) << 32) | b as u64);
+            spread.add(m.stiffness.bits());
         });
-        key
+        mix(key, spread.sum())
+    }
+}
+
+/// A sum of values each weighed by its place in the sequence, for a key: every value is
+/// xored with its place and multiplied by an odd constant in two 32-bit lanes (a change of
+/// one value always changes the sum), and no term waits on another, where a chain of mixes
+/// waits on each one. Built for [`Topology::fingerprint`] and the direct solver's key.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Spread {
+    lanes: (u32, u32),
+    /// The place's weight: the golden ratio's 32 bits times the count of values so far.
+    place: u32,
+}
+
+impl Spread {
+    /// Adds `value` at the next place.
+    #[inline]
+    pub(crate) fn add(&mut self, value: u64) {
+        let place = self.place;
+        let (low, high) = (
+            value as u32 ^ place,
+            (value >> 32) as u32 ^ place.rotate_left(16),
+        );
+        self.lanes.0 = self.lanes.0.wrapping_add(low.wrapping_mul(0x85EB_CA77));
+        self.lanes.1 = self.lanes.1.wrapping_add(high.wrapping_mul(0xC2B2_AE3D));
+        self.place = place.wrapping_add(0x9E37_79B9);
+    }
+
+    /// The sum, with the count of values in it.
+    pub(crate) fn sum(&self) -> u64 {
+        ((u64::from(self.lanes.1 ^ self.place)) << 32) | u64::from(self.lanes.0)
     }
 }
 
@@ -482,6 +515,14 @@ impl<S: Scalar, const CAP: usize> Topology<S> for Springs<S, CAP> {
     fn spring_count(&self) -> usize {
         self.list.len()
     }
+    /// The material's stiffness and every live spring's ends (one material for all).
+    fn fingerprint(&self, key: u64, mix: impl Fn(u64, u64) -> u64) -> u64 {
+        let mut spread = Spread::default();
+        for s in self.list.iter().filter(|s| !s.broken) {
+            spread.add((u64::from(s.a) << 16) | u64::from(s.b));
+        }
+        mix(mix(key, self.material.stiffness.bits()), spread.sum())
+    }
     fn snap<P: Point<Scalar = S>>(&mut self, x: &[P]) -> usize {
         let mut snapped = 0;
         for s in self.list.iter_mut() {
@@ -653,5 +694,29 @@ mod tests {
             Springs::<f32, 15>::surface_grid(&grid[..0], 0, 2, 1, mat()).err(),
             Some(Error::InvalidParameter { .. })
         ));
+    }
+
+    /// A spread sum changes with any one value, with a value moved to another place, and
+    /// with a value left off the end.
+    #[test]
+    fn a_spread_sum_follows_every_value_and_its_place() {
+        let values: [u64; 40] = core::array::from_fn(|i| (i as u64 * 7_919) ^ (i as u64) << 40);
+        let sum = |v: &[u64]| {
+            let mut spread = Spread::default();
+            v.iter().for_each(|&x| spread.add(x));
+            spread.sum()
+        };
+        let base = sum(&values);
+        assert_ne!(sum(&values[..39]), base);
+        for i in 0..40 {
+            for bit in [0, 17, 31, 32, 50, 63] {
+                let mut changed = values;
+                changed[i] ^= 1 << bit;
+                assert_ne!(sum(&changed), base, "{i} {bit}");
+            }
+        }
+        let mut swapped = values;
+        swapped.swap(3, 4);
+        assert_ne!(sum(&swapped), base);
     }
 }

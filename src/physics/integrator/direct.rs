@@ -4,7 +4,7 @@
 use super::{Integrator, Model, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
-use crate::physics::spring::Topology;
+use crate::physics::spring::{Spread, Topology};
 use crate::{Point, Scalar};
 
 /// The springs of a rope or a cloth solved together by a direct, banded solve: stable at
@@ -347,9 +347,11 @@ impl DirectSprings {
             }
         }
         // The key of the matrix: the step's length, every inverse mass and the springs.
-        let key = w
-            .iter()
-            .fold(mix(0, h.bits()), |key, &w| mix(key, w.bits()));
+        let mut masses = Spread::default();
+        for &w in w {
+            masses.add(w.bits());
+        }
+        let key = mix(mix(0, h.bits()), masses.sum());
         let key = model.topology.fingerprint(key, mix);
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
