@@ -1,6 +1,6 @@
 //! An inner tube on a microcontroller: a closed cloth of 8×5 particles wrapped into a torus
 //! (`Torus`, 0.3 m round its ring, 0.1 m round its tube, 0.8 kg) blown up by the gas inside
-//! it (`force::VolumePressure`), dropped on a floor with friction, squashing and bouncing,
+//! it (`force::Pressure`), dropped on a floor with friction, squashing and bouncing,
 //! stepped at 60 Hz for 600 frames and drawn every frame as a closed Catmull-Rom surface of
 //! 17×11 points with normals, in Q16.16 on a Cortex-M0 (the same code runs in f32).
 //!
@@ -23,7 +23,7 @@ use device::{Meter, Report};
 use dunas::Torus;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::force::VolumePressure;
+use dunas::force::Pressure;
 use dunas::prelude::*;
 use dunas::surface::SurfaceTable;
 
@@ -37,7 +37,7 @@ const NV: usize = 6;
 /// The tube, its gas, its tables and what it draws.
 struct Tube<S: Scalar> {
     body: Torus<S, U, V>,
-    gas: VolumePressure<S>,
+    gas: Pressure<S>,
     tables: (SurfaceTable<S, U, NU>, SurfaceTable<S, V, NV>),
     points: [Vec3<S>; NU * NV],
     normals: [Vec3<S>; NU * NV],
@@ -71,7 +71,7 @@ fn tube<S: Scalar>() -> Result<Tube<S>, Error> {
         let p = body.positions()[i] - centre;
         body.set_velocity(i, Vec3::new(-p.y, p.x, S::ZERO) * S::from_i16(3))?;
     }
-    let gas = VolumePressure::at(S::from_i16(200), body.volume())?;
+    let gas = Pressure::at(S::from_i16(200), body.volume())?;
     let zero = Vec3::new(S::ZERO, S::ZERO, S::ZERO);
     Ok(Tube {
         body,

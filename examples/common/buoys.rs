@@ -1,11 +1,11 @@
 //! Lifebuoys afloat in the harbour: closed cloths wrapped into tori (`Torus`) blown up by
-//! the gas inside them (`force::VolumePressure`), held up by the sea under them and drawn
+//! the gas inside them (`force::Pressure`), held up by the sea under them and drawn
 //! as closed smooth surfaces, banded red and white.
 
 use crate::boats::{Camera, arr, fleet_camera, shade};
 use crate::raster::Image;
 use crate::sea::Harbour;
-use dunas::force::{Accelerations, Bodies, ForceField, VolumePressure};
+use dunas::force::{Accelerations, Bodies, ForceField, Pressure};
 use dunas::spring::Material;
 use dunas::surface::SurfaceTable;
 use dunas::{Settings, Smoothing, Torus, Vec3};
@@ -30,7 +30,7 @@ const WHITE: [f32; 3] = [235.0, 232.0, 222.0];
 /// A lifebuoy and the gas inside it.
 pub struct Buoy {
     pub body: Torus<f32, U, V>,
-    gas: VolumePressure<f32>,
+    gas: Pressure<f32>,
 }
 
 /// The sea's hold on a buoy: each particle's share of the buoy's volume, under water by
@@ -88,7 +88,7 @@ pub fn buoys(harbour: &Harbour) -> Vec<Buoy> {
                 settings,
             )
             .expect("a valid lifebuoy");
-            let gas = VolumePressure::at(PRESSURE, body.volume()).expect("a valid gas");
+            let gas = Pressure::at(PRESSURE, body.volume()).expect("a valid gas");
             Buoy { body, gas }
         })
         .collect()

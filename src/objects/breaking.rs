@@ -253,7 +253,7 @@ impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Torus<S, U, V, I>
     /// [`Cloth::set_snap`]: a torus blown past what its springs hold bursts. The gas cannot
     /// see the springs: when a step reports
     /// [`StepInfo::snapped`](crate::physics::system::StepInfo::snapped), let it out
-    /// ([`VolumePressure::pop`](crate::force::VolumePressure::pop)).
+    /// ([`Pressure::pop`](crate::force::Pressure::pop)).
     ///
     /// # Errors
     /// As [`Snap::check`], for the first bad limit; nothing changes then.

@@ -5,7 +5,7 @@ use core::ops::{Deref, DerefMut};
 use crate::contact::{Contacts, Touch};
 use crate::curves::surface::{SurfaceTable, sample};
 use crate::error::{check_positive, invalid};
-use crate::physics::force::{ForceField, VolumePressure};
+use crate::physics::force::{ForceField, Pressure};
 use crate::physics::integrator::{Integrator, SymplecticEuler};
 use crate::physics::shape::Grid;
 use crate::physics::spring::{Material, TorusSprings};
@@ -15,7 +15,7 @@ use crate::{Error, Scalar, Settings, Smoothing, Vec3};
 /// A `U × V` closed cloth in the shape of a torus: `U` particles round the ring, `V` round
 /// the tube, every row a ring and the last row joined to the first ([`TorusSprings`],
 /// `6·U·V` springs implied by the grid, `U, V ≥ 5`). Blow it up with a
-/// [`VolumePressure`] passed to its steps, and it is an inner tube that squashes on the
+/// [`Pressure`] passed to its steps, and it is an inner tube that squashes on the
 /// ground, bounces and pops.
 ///
 /// It derefs to its [`MassSpring`] (step, pin, hold, throw); it touches colliders with its
@@ -25,12 +25,12 @@ use crate::{Error, Scalar, Settings, Smoothing, Vec3};
 ///
 /// ```
 /// use dunas::prelude::*;
-/// use dunas::{Torus, force::VolumePressure, surface::SurfaceTable};
+/// use dunas::{Torus, force::Pressure, surface::SurfaceTable};
 ///
 /// let m = Material { stiffness: 400.0, damping: 0.5 };
 /// let settings = Settings { gravity: Vec3::new(0.0, -9.8, 0.0), damping: 0.2, ..Settings::default() };
 /// let mut tube: Torus<f32, 8, 6> = Torus::new(Vec3::new(0.0, 1.0, 0.0), 0.5, 0.2, 1.0, [m, m, m], settings)?;
-/// let mut gas = VolumePressure::at(50.0, tube.volume())?; // 50 N/m² at its first volume
+/// let mut gas = Pressure::at(50.0, tube.volume())?; // 50 N/m² at its first volume
 /// let floor = [Collider::half_space(Vec3::default(), Vec3::new(0.0, 1.0, 0.0))?];
 /// let contacts = Contacts::new(&floor, 0.01, Touch::Particles)?;
 /// for _ in 0..60 {
@@ -126,10 +126,10 @@ impl<S: Scalar, const U: usize, const V: usize, I: Integrator> Torus<S, U, V, I>
             })
     }
 
-    /// The volume the particles enclose ([`VolumePressure::signed_volume`]): positive while
+    /// The volume the particles enclose ([`Pressure::signed_volume`]): positive while
     /// the torus is right side out.
     pub fn volume(&self) -> S {
-        VolumePressure::signed_volume(self.system.positions(), U)
+        Pressure::signed_volume(self.system.positions(), U)
     }
 
     /// Draws the smooth closed surface through the particles: `tu.count() × tv.count()`

@@ -8,7 +8,7 @@
 use crate::error::{check_non_negative, check_points};
 use crate::{Error, Material, Point, Scalar, Vec3};
 
-pub use super::pressure::{Pressure, VolumePressure};
+pub use super::pressure::Pressure;
 
 /// Read-only view of the particles for a force field.
 #[derive(Clone, Copy, Debug)]

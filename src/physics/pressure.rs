@@ -1,19 +1,21 @@
-//! The gas inside a closed loop of particles: a jelly, a balloon, a tyre.
+//! The gas inside a closed body of particles: a jelly, a balloon, a tyre in 2D; an inner
+//! tube in 3D.
 
 use super::force::{Accelerations, Bodies, ForceField};
 use crate::error::check_non_negative;
 use crate::{Error, Point, Scalar, Vec2, Vec3};
 
-/// The gas inside a closed loop of particles (a 2D soft body): it pushes every edge of the
-/// loop outwards with the pressure `p = amount / area`, Boyle's law at a constant temperature
-/// (`amount` is `n R T`, pressure times area, in force × length in 2D). Squeezed to half its
-/// area, the gas pushes twice as hard; the force is the gradient of `−amount · ln(area)`, so
-/// it stores and returns energy as a spring does.
+/// The gas inside a closed body of particles, a force field in 2D and in 3D: Boyle's law at a
+/// constant temperature, `p = amount / area` (2D) or `amount / volume` (3D), where `amount`
+/// is `n R T` (pressure times area or volume: force × length). Squeezed to half its size,
+/// the gas pushes twice as hard; the force is the gradient of `−amount · ln(size)`, so it
+/// stores and returns energy as a spring does, and its pushes sum to zero, so the gas never
+/// moves the body as a whole: held and thrown, a jelly's centre of mass flies the ballistic
+/// arc.
 ///
-/// The loop is the system's particles in order, the last joined back to the first (a
+/// **In 2D** (`Vec2`: a jelly, a balloon, a tyre) the gas pushes every edge of a closed loop
+/// outwards. The loop is the system's particles in order, the last joined back to the first (a
 /// [`Springs::closed_loop`](crate::spring::Springs::closed_loop) ring), in either direction.
-/// The pushes of a closed loop sum to zero, so the gas never moves the body as a whole: held
-/// and thrown, a jelly's centre of mass flies the ballistic arc.
 /// Each edge's push, `p` times its length along its outward normal, is shared by its two
 /// ends. A loop whose area is within rounding of 0 (collapsed, or turned inside out through
 /// zero) gets no push that evaluation, never an infinite one; so does a `Q16` loop whose
@@ -23,13 +25,27 @@ use crate::{Error, Point, Scalar, Vec2, Vec3};
 /// difference were its area: build the ring without crossings. Cost: one cross product and
 /// three multiply-adds a particle, and one division.
 ///
+/// **In 3D** (`Vec3`: an inner tube, a swim ring) the gas pushes every particle of a closed
+/// surface along the volume's gradient. The surface is the system's grid closed both ways (a
+/// [`Torus`](crate::Torus)): rows of [`Bodies::columns`] particles, each row a ring, the last
+/// row joined to the first, at least 3×3. Its volume ([`signed_volume`](Self::signed_volume))
+/// is that of the grid's quadrilaterals, each the mean of its two splits into triangles (the
+/// same whichever diagonal a renderer draws), positive when `∂u × ∂v` (along a row, then to
+/// the next row) points out; the push is outwards either way. A volume within rounding of 0
+/// gets no push, and neither does a system whose particles are not such a grid; a `Q16`
+/// volume past the format's range gets none and the step reports it `saturated`. Cost: six
+/// cross products a particle, then one division.
+///
 /// Measured (`tests/suite/pressure.rs`): a ring of 16 particles comes to rest at the radius
 /// where its springs balance its gas (the closed form, by bisection) within 1% (to 5
 /// digits); rolled along a floor it keeps its area within 2% (1.1% touching with its
 /// particles, 0.4% with its drawn closed curve, `Touch::DrawnLoop`, which stays above the
 /// floor). On a Cortex-M0 in
 /// Q16.16 (`examples/mcu_jelly.rs`, 8 particles on a floor) a frame with its closed curve
-/// takes 25 968 instructions on average and up to 28 540.
+/// takes 25 968 instructions on average and up to 28 540. In 3D (`tests/suite/torus.rs`): at
+/// rest an 8×8 torus's springs balance its gas by the virial identity (`Σ k (l − r) l =
+/// 3 · amount`) to 5 digits, and one undamped step changes the springs', gas's and motion's
+/// energy by `O(h²)` (the pushes are the energy's gradient).
 ///
 /// ```
 /// use dunas::force::Pressure;
@@ -51,13 +67,32 @@ use crate::{Error, Point, Scalar, Vec2, Vec3};
 /// assert!(Pressure::area(jelly.positions()) > 3.2); // blown up past π m²
 /// # Ok::<(), dunas::Error>(())
 /// ```
+///
+/// ```
+/// use dunas::force::Pressure;
+/// use dunas::prelude::*;
+/// use dunas::Torus;
+///
+/// // An inner tube, 1 m round its ring, 0.3 m round its tube, 2 kg, blown up in no gravity.
+/// let m = Material { stiffness: 300.0, damping: 1.0 };
+/// let settings = Settings { damping: 1.0, ..Settings::default() };
+/// let mut tube: Torus<f32, 8, 6> = Torus::new(Vec3::default(), 1.0, 0.3, 2.0, [m, m, m], settings)?;
+/// let before = tube.volume();
+/// let mut gas = Pressure::new(20.0)?; // 20 N·m: 11 N/m² of pressure at its 1.8 m³
+/// for _ in 0..120 {
+///     let _ = tube.step_with(1.0 / 60.0, &mut gas)?;
+/// }
+/// assert!(tube.volume() > before); // blown up
+/// # Ok::<(), dunas::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pressure<S> {
     amount: S,
 }
 
 impl<S: Scalar> Pressure<S> {
-    /// Gas of `amount` (`n R T`: pressure × area, ≥ 0; 0 is no gas).
+    /// Gas of `amount` (`n R T`: pressure × area in 2D, pressure × volume in 3D, ≥ 0; 0 is
+    /// no gas).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative, NaN or infinite amount.
@@ -67,7 +102,8 @@ impl<S: Scalar> Pressure<S> {
         })
     }
 
-    /// The gas that pushes with `pressure` at `area`: `amount = pressure · area`.
+    /// The gas that pushes with `pressure` at `area` (in 3D, a volume): `amount = pressure ·
+    /// area`.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative, NaN or infinite pressure, area or product
@@ -113,6 +149,22 @@ impl<S: Scalar> Pressure<S> {
     pub fn area(points: &[Vec2<S>]) -> S {
         Self::signed_area(points).abs()
     }
+
+    /// The volume the closed grid `points` (rows of `columns` particles, see the type's
+    /// docs) encloses, signed; 0 when `points` is not such a grid; in `Q16`, the format's
+    /// limit (not finite) when it does not fit.
+    pub fn signed_volume(points: &[Vec3<S>], columns: usize) -> S {
+        let mut twelve = S::ZERO;
+        let fits = quads(points, columns, |_, [a, b, c, d]| {
+            let cd = c.cross(d);
+            twelve += a.dot(b.cross(c) + cd + b.cross(d)) + b.dot(cd);
+            twelve.is_finite()
+        });
+        if !fits {
+            return twelve;
+        }
+        twelve * S::ratio(1, 12)
+    }
 }
 
 impl<S: Scalar> ForceField<Vec2<S>> for Pressure<S> {
@@ -143,97 +195,6 @@ impl<S: Scalar> ForceField<Vec2<S>> for Pressure<S> {
             out.add_force(i, push);
             out.add_force(j, push);
         }
-    }
-}
-
-/// The gas inside a closed surface of particles (a 3D soft body: an inner tube, a swim
-/// ring, a balloon): Boyle's law in 3D, `p = amount / volume` (`amount` is `n R T`, pressure
-/// × volume, in force × length), pushing every particle along the volume's gradient. It is
-/// the 3D [`Pressure`]: the force is the gradient of `−amount · ln(volume)`, it stores and
-/// returns energy, and its pushes sum to zero, so the gas never moves the body as a whole.
-///
-/// The surface is the system's grid closed both ways (a [`Torus`](crate::Torus)): rows of
-/// [`Bodies::columns`] particles, each row a ring, the last row joined to the first, at
-/// least 3×3. The volume is that of the grid's quadrilaterals, each the mean of its two
-/// splits into triangles (so the volume is the same whichever diagonal a renderer draws),
-/// signed: positive when `∂u × ∂v` (along a row, then to the next row) points out. The push
-/// is outwards either way. A volume within rounding of 0 gets no push that evaluation, and
-/// neither does a system whose particles are not such a grid; a `Q16` volume past the
-/// format's range gets none and the step reports it `saturated`. Cost: six cross products
-/// a particle, then one division.
-///
-/// Measured (`tests/suite/pressure.rs`): at rest, an 8×8 torus's springs balance its gas by
-/// the virial identity (`Σ k (l − r) l = 3 · amount`) within 1%; its pushes are the volume's
-/// gradient within 1e-6 of a finite difference in `f64`.
-///
-/// ```
-/// use dunas::force::VolumePressure;
-/// use dunas::prelude::*;
-/// use dunas::Torus;
-///
-/// // An inner tube, 1 m round its ring, 0.3 m round its tube, 2 kg, blown up in no gravity.
-/// let m = Material { stiffness: 300.0, damping: 1.0 };
-/// let settings = Settings { damping: 1.0, ..Settings::default() };
-/// let mut tube: Torus<f32, 8, 6> = Torus::new(Vec3::default(), 1.0, 0.3, 2.0, [m, m, m], settings)?;
-/// let before = tube.volume();
-/// let mut gas = VolumePressure::new(20.0)?; // 20 N·m: 11 N/m² of pressure at its 1.8 m³
-/// for _ in 0..120 {
-///     let _ = tube.step_with(1.0 / 60.0, &mut gas)?;
-/// }
-/// assert!(tube.volume() > before); // blown up
-/// # Ok::<(), dunas::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VolumePressure<S> {
-    amount: S,
-}
-
-impl<S: Scalar> VolumePressure<S> {
-    /// Gas of `amount` (`n R T`: pressure × volume, ≥ 0; 0 is no gas).
-    ///
-    /// # Errors
-    /// [`Error::InvalidParameter`] for a negative, NaN or infinite amount.
-    pub fn new(amount: S) -> Result<Self, Error> {
-        Ok(VolumePressure {
-            amount: check_non_negative(amount, "amount")?,
-        })
-    }
-
-    /// The gas that pushes with `pressure` at `volume`: `amount = pressure · volume`.
-    ///
-    /// # Errors
-    /// [`Error::InvalidParameter`] for a negative, NaN or infinite pressure, volume or
-    /// product (a `Q16` product past the format's range).
-    pub fn at(pressure: S, volume: S) -> Result<Self, Error> {
-        check_non_negative(pressure, "pressure")?;
-        check_non_negative(volume, "volume")?;
-        Self::new(pressure * volume)
-    }
-
-    /// The gas's amount, `n R T`.
-    pub fn amount(&self) -> S {
-        self.amount
-    }
-
-    /// Lets the gas out: see [`Pressure::pop`].
-    pub fn pop(&mut self) {
-        self.amount = S::ZERO;
-    }
-
-    /// The volume the closed grid `points` (rows of `columns` particles, see the type's
-    /// docs) encloses, signed; 0 when `points` is not such a grid; in `Q16`, the format's
-    /// limit (not finite) when it does not fit.
-    pub fn signed_volume(points: &[Vec3<S>], columns: usize) -> S {
-        let mut twelve = S::ZERO;
-        let fits = quads(points, columns, |_, [a, b, c, d]| {
-            let cd = c.cross(d);
-            twelve += a.dot(b.cross(c) + cd + b.cross(d)) + b.dot(cd);
-            twelve.is_finite()
-        });
-        if !fits {
-            return twelve;
-        }
-        twelve * S::ratio(1, 12)
     }
 }
 
@@ -269,7 +230,7 @@ fn quads<S: Scalar>(
     true
 }
 
-impl<S: Scalar> ForceField<Vec3<S>> for VolumePressure<S> {
+impl<S: Scalar> ForceField<Vec3<S>> for Pressure<S> {
     fn apply(&mut self, _: S, bodies: &Bodies<'_, Vec3<S>>, out: &mut Accelerations<'_, Vec3<S>>) {
         let twelve = Self::signed_volume(bodies.pos, bodies.columns) * S::from_i16(12);
         if !twelve.is_finite() {

@@ -131,8 +131,9 @@ pub trait Topology<S: Scalar> {
     /// `key` with what the springs are mixed in by `mix`: every spring's ends and stiffness
     /// (torn springs as the topology marks them), so that equal springs give equal
     /// fingerprints. What a direct solver's factor depends on besides the masses. By default
-    /// every spring's ends and stiffness are [`Spread`] (a multiply or two each, none
-    /// waiting on another), then mixed in once; a topology may mix less that says as much.
+    /// every spring's ends and stiffness are summed, each weighed by its place (a multiply or
+    /// two each, none waiting on another), then mixed in once; a topology may mix less that
+    /// says as much.
     fn fingerprint(&self, key: u64, mix: impl Fn(u64, u64) -> u64) -> u64 {
         let mut spread = Spread::default();
         self.for_each_spring(|a, b, _, m| {

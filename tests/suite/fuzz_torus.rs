@@ -8,7 +8,7 @@
 
 use super::fuzz::{Touching, hostile, smoothing, snap, survives, touching};
 use dunas::Torus;
-use dunas::force::VolumePressure;
+use dunas::force::Pressure;
 use dunas::prelude::*;
 use dunas::surface::SurfaceTable;
 use proptest::prelude::*;
@@ -57,18 +57,18 @@ fn apply_torus<S: Scalar>(t: &mut Tube<S>, call: &TorusCall) -> Result<(), Error
     let v = |[x, y, z]: [f64; 3]| Vec3::new(s(x), s(y), s(z));
     match call {
         TorusCall::Blow { dt, amount } => {
-            let mut gas = VolumePressure::new(s(*amount))?;
+            let mut gas = Pressure::new(s(*amount))?;
             t.step_with(s(*dt), &mut gas).map(drop)
         }
         TorusCall::Touch(touching, amount) => {
-            let mut gas = VolumePressure::new(s(*amount))?;
+            let mut gas = Pressure::new(s(*amount))?;
             touching.run(|dt, contacts| t.step_touching(dt, &mut gas, contacts))
         }
         TorusCall::SetPosition(i, p) => t.set_position(*i, v(*p)),
         TorusCall::SetVelocity(i, p) => t.set_velocity(*i, v(*p)),
         TorusCall::Snap(limits) => t.set_snap(limits.map(snap)),
         TorusCall::Pop(amount) => {
-            let mut gas = VolumePressure::at(s(*amount), t.volume())?;
+            let mut gas = Pressure::at(s(*amount), t.volume())?;
             gas.pop();
             assert_eq!(gas.amount(), S::ZERO);
             Ok(())
@@ -146,7 +146,7 @@ fn torus_builds<S: Scalar>(numbers: [f64; 6]) {
     ) else {
         return;
     };
-    let Ok(mut gas) = VolumePressure::new(s(amount)) else {
+    let Ok(mut gas) = Pressure::new(s(amount)) else {
         return;
     };
     for _ in 0..60 {

@@ -1,4 +1,4 @@
-//! The closed cloth (`Torus`) and the gas inside it (`force::VolumePressure`) against
+//! The closed cloth (`Torus`) and the gas inside it (`force::Pressure`) against
 //! closed forms: the volume of a torus, the virial balance of springs and gas at rest,
 //! energy kept by an undamped oscillation, a ballistic throw, the drawn surface's seam, and
 //! bad input.
@@ -6,7 +6,7 @@
 
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::force::VolumePressure;
+use dunas::force::Pressure;
 use dunas::integrator::DirectSprings;
 use dunas::spring::{Material, Snap, Topology};
 use dunas::surface::SurfaceTable;
@@ -23,16 +23,18 @@ fn material(k: f64, damping: f64) -> [Material<f64>; 3] {
     [m, m, m]
 }
 
+/// An 8×8 torus of 2 kg lying flat round `(0, y, 0)`, its springs `springs`.
+fn tube_at<I: Integrator>(
+    y: f64,
+    springs: [Material<f64>; 3],
+    settings: Settings<Vec3<f64>, I>,
+) -> Torus<f64, 8, 8, I> {
+    Torus::new(Vec3::new(0.0, y, 0.0), RADIUS, TUBE, 2.0, springs, settings).unwrap()
+}
+
+/// [`tube_at`] the origin, its springs of `k` damped by 0.5.
 fn tube<I: Integrator>(k: f64, settings: Settings<Vec3<f64>, I>) -> Torus<f64, 8, 8, I> {
-    Torus::new(
-        Vec3::default(),
-        RADIUS,
-        TUBE,
-        2.0,
-        material(k, 0.5),
-        settings,
-    )
-    .unwrap()
+    tube_at(0.0, material(k, 0.5), settings)
 }
 
 /// `Σ k (l − rest) l` over the springs: what the gas's `3 · amount` balances at rest (the
@@ -66,16 +68,16 @@ fn a_fine_torus_grid_holds_the_torus_volume() {
         })
         .collect();
     let want = 2.0 * std::f64::consts::PI.powi(2) * RADIUS * TUBE * TUBE;
-    let got = VolumePressure::signed_volume(&points, u);
+    let got = Pressure::signed_volume(&points, u);
     eprintln!("256×256: {got:.6} m³ against {want:.6} m³");
     assert!((got - want).abs() <= 1e-3 * want, "{got} against {want}");
     // Mirrored (z → −z) the grid turns inside out.
     let mirrored: Vec<_> = points.iter().map(|p| Vec3::new(p.x, p.y, -p.z)).collect();
-    let back = VolumePressure::signed_volume(&mirrored, u);
+    let back = Pressure::signed_volume(&mirrored, u);
     assert!((back + got).abs() <= 1e-9 * want);
     // Not a closed grid of rows of `u`: no volume.
-    assert_eq!(VolumePressure::signed_volume(&points[..u * 2], u), 0.0);
-    assert_eq!(VolumePressure::signed_volume(&points[..100], 7), 0.0);
+    assert_eq!(Pressure::signed_volume(&points[..u * 2], u), 0.0);
+    assert_eq!(Pressure::signed_volume(&points[..100], 7), 0.0);
 }
 
 /// Blown up and damped to rest in no gravity, the springs balance the gas by the virial
@@ -86,7 +88,7 @@ fn a_blown_up_torus_rests_where_its_springs_balance_its_gas() {
         for amount in [5.0, 20.0, 60.0] {
             let mut t = tube(400.0, settings);
             let before = t.volume();
-            let mut gas = VolumePressure::new(amount).unwrap();
+            let mut gas = Pressure::new(amount).unwrap();
             for _ in 0..900 {
                 let _ = t.step_with(1.0 / 60.0, &mut gas).unwrap();
             }
@@ -137,15 +139,7 @@ fn the_gas_pushes_down_its_energy_and_gives_no_momentum() {
     };
     let amount = 20.0;
     let build = || {
-        let mut t = Torus::<f64, 8, 8>::new(
-            Vec3::default(),
-            RADIUS,
-            TUBE,
-            2.0,
-            material(400.0, 0.0),
-            settings,
-        )
-        .unwrap();
+        let mut t = tube_at(0.0, material(400.0, 0.0), settings);
         let mut seed = 7u64;
         let mut random = move || {
             seed = seed
@@ -165,9 +159,7 @@ fn the_gas_pushes_down_its_energy_and_gives_no_momentum() {
     let change = |h: f64| {
         let mut t = build();
         let before = total(&t);
-        let _ = t
-            .step_with(h, &mut VolumePressure::new(amount).unwrap())
-            .unwrap();
+        let _ = t.step_with(h, &mut Pressure::new(amount).unwrap()).unwrap();
         (total(&t) - before).abs()
     };
     let (coarse, fine) = (change(1e-4), change(1e-5));
@@ -175,7 +167,7 @@ fn the_gas_pushes_down_its_energy_and_gives_no_momentum() {
     assert!(fine * 50.0 <= coarse, "{coarse} then {fine}");
 
     let mut t = build();
-    let mut gas = VolumePressure::new(amount).unwrap();
+    let mut gas = Pressure::new(amount).unwrap();
     let momentum =
         |t: &Torus<f64, 8, 8>| t.velocities().iter().fold(Vec3::default(), |s, &v| s + v);
     let start = momentum(&t);
@@ -196,16 +188,8 @@ fn a_dropped_torus_bounces_and_a_thrown_one_flies_the_arc() {
         damping: 0.3,
         ..Settings::default()
     };
-    let mut t = Torus::<f64, 8, 8>::new(
-        Vec3::new(0.0, 1.5, 0.0),
-        RADIUS,
-        TUBE,
-        2.0,
-        material(2000.0, 0.5),
-        settings,
-    )
-    .unwrap();
-    let mut gas = VolumePressure::at(400.0, t.volume()).unwrap();
+    let mut t = tube_at(1.5, material(2000.0, 0.5), settings);
+    let mut gas = Pressure::at(400.0, t.volume()).unwrap();
     let floor = [Collider::half_space(Vec3::default(), Vec3::new(0.0, 1.0, 0.0)).unwrap()];
     let contacts = Contacts::new(&floor, 0.01, Touch::Particles).unwrap();
     let (mut low, mut blown, mut lowest, mut bounce) = (f64::MAX, 0.0, f64::MAX, 0.0f64);
@@ -245,7 +229,7 @@ fn a_dropped_torus_bounces_and_a_thrown_one_flies_the_arc() {
     let centre = |t: &Torus<f64, 8, 8>| {
         t.positions().iter().fold(Vec3::default(), |s, &p| s + p) * (1.0 / 64.0)
     };
-    let mut gas = VolumePressure::new(20.0).unwrap();
+    let mut gas = Pressure::new(20.0).unwrap();
     for _ in 0..60 {
         let _ = thrown.step_with(1.0 / 60.0, &mut gas).unwrap();
     }
@@ -330,16 +314,16 @@ fn bad_input_is_refused_and_q16_follows_f64() {
         );
     }
     for amount in [-1.0, f64::NAN, f64::INFINITY] {
-        assert!(VolumePressure::new(amount).is_err());
+        assert!(Pressure::new(amount).is_err());
     }
-    assert!(VolumePressure::at(1.0, -1.0).is_err());
+    assert!(Pressure::at(1.0, -1.0).is_err());
 
     // A rope's row is not a closed grid: the gas leaves it alone.
     let mut rope: dunas::Rope<Vec3<f64>, 8> =
         dunas::Rope::new(Vec3::default(), Vec3::new(7.0, 0.0, 0.0), 1.0, m[0], s).unwrap();
     let before = rope.positions().to_vec();
     let _ = rope
-        .step_with(1.0 / 60.0, &mut VolumePressure::new(10.0).unwrap())
+        .step_with(1.0 / 60.0, &mut Pressure::new(10.0).unwrap())
         .unwrap();
     assert_eq!(rope.positions(), &before[..]);
 
@@ -363,8 +347,8 @@ fn bad_input_is_refused_and_q16_follows_f64() {
         },
     );
     let (mut gas_q, mut gas_f) = (
-        VolumePressure::new(q(20.0)).unwrap(),
-        VolumePressure::new(20.0).unwrap(),
+        Pressure::new(q(20.0)).unwrap(),
+        Pressure::new(20.0).unwrap(),
     );
     for _ in 0..60 {
         let info = fixed.step_with(q(1.0 / 60.0), &mut gas_q).unwrap();
@@ -392,11 +376,11 @@ fn an_overblown_torus_bursts_and_shrinks() {
     let floor =
         [Collider::half_space(Vec3::new(0.0, -0.5, 0.0), Vec3::new(0.0, 1.0, 0.0)).unwrap()];
     let contacts = Contacts::new(&floor, 0.01, Touch::Particles).unwrap();
-    let mut gas = VolumePressure::new(0.0).unwrap();
+    let mut gas = Pressure::new(0.0).unwrap();
     let (start, mut burst) = (t.volume(), None);
     for frame in 0..240 {
         if burst.is_none() {
-            gas = VolumePressure::new(10.0 * frame as f64).unwrap();
+            gas = Pressure::new(10.0 * frame as f64).unwrap();
         }
         let info = t
             .step_touching_particles(1.0 / 60.0, &mut gas, &contacts)
@@ -437,16 +421,8 @@ fn a_torus_rests_on_rods_its_particles_miss() {
         Touch::Drawn(Smoothing::NaturalSpline),
         Touch::Particles,
     ] {
-        let mut t = Torus::<f64, 8, 8>::new(
-            Vec3::new(0.0, 0.5, 0.0),
-            RADIUS,
-            TUBE,
-            2.0,
-            material(2000.0, 0.5),
-            settings,
-        )
-        .unwrap();
-        let mut gas = VolumePressure::at(300.0, t.volume()).unwrap();
+        let mut t = tube_at(0.5, material(2000.0, 0.5), settings);
+        let mut gas = Pressure::at(300.0, t.volume()).unwrap();
         let contacts = Contacts::new(&rods, thickness, touch).unwrap();
         for _ in 0..120 {
             let _ = t.step_touching(1.0 / 60.0, &mut gas, &contacts).unwrap();
