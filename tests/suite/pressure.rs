@@ -6,7 +6,7 @@ use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
 use dunas::force::Pressure;
 use dunas::smooth::Smoothed;
-use dunas::spring::{Material, Springs};
+use dunas::spring::{Material, Springs, Topology};
 use dunas::{Error, Point, Rope, Settings, Smoothing, Vec2};
 
 const N: usize = 16;
@@ -147,6 +147,62 @@ fn a_rolling_jelly_keeps_its_area() {
                 "the drawn curve stays above the floor: {lowest}"
             );
         }
+    }
+}
+
+/// Squashed on a floor by its weight, a jelly rests where its springs, its gas and its
+/// weight balance by the virial identity (each particle at rest: `Σ x · F = 0` over springs,
+/// gas, gravity and the floor's push at the contact height), `Σ k (l − r) l = 2 · amount −
+/// W (ȳ − t)`, within 1% of `2 · amount`, for weights from 5 to 80 N: the heavier, the
+/// smaller its area and the harder its gas pushes (`p = amount / area`).
+#[test]
+fn a_jelly_squashed_by_its_weight_balances_by_the_gas_law() {
+    let (amount, thickness, mass) = (20.0, 0.01, 1.0);
+    let mut last_area = f64::INFINITY;
+    for g in [5.0, 20.0, 80.0] {
+        let settings = Settings {
+            gravity: Vec2::new(0.0, -g),
+            damping: 3.0,
+            ..Settings::default()
+        };
+        let mut jelly = ring(Vec2::new(0.0, 0.6), 0.5, 400.0, settings);
+        let mut gas = Pressure::new(amount).unwrap();
+        let floor = [Collider::half_space(Vec2::new(0.0, 0.0), Vec2::new(0.0, 1.0)).unwrap()];
+        let contacts = Contacts::new(&floor, thickness, Touch::Particles).unwrap();
+        for _ in 0..1200 {
+            let _ = jelly
+                .step_touching(1.0 / 60.0, &mut gas, &contacts)
+                .unwrap();
+        }
+        let x = jelly.positions();
+        let mut springs = 0.0;
+        jelly.topology().for_each_spring(|a, b, rest, m| {
+            let l = x[a].distance(x[b]);
+            springs += m.stiffness * (l - rest) * l;
+        });
+        let (weight, height) = (mass * g, x.iter().map(|p| p.y).sum::<f64>() / N as f64);
+        let balance = 2.0 * amount - weight * (height - thickness);
+        let area = Pressure::area(x);
+        let speed = jelly
+            .velocities()
+            .iter()
+            .map(|v| v.length())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{weight} N: area {area:.4} m², pressure {:.2} N/m; Σk(l−r)l {springs:.4} against \
+             {balance:.4}; fastest particle {speed:.1e} m/s",
+            amount / area
+        );
+        assert!(speed < 1e-3, "at rest: {speed}");
+        assert!(
+            (springs - balance).abs() <= 0.01 * 2.0 * amount,
+            "{springs} against {balance}"
+        );
+        assert!(
+            area < last_area,
+            "squashed smaller: {area} after {last_area}"
+        );
+        last_area = area;
     }
 }
 
