@@ -33,8 +33,8 @@ use crate::{Error, Point, Scalar, Vec2, Vec3};
 /// same whichever diagonal a renderer draws), positive when `∂u × ∂v` (along a row, then to
 /// the next row) points out; the push is outwards either way. A volume within rounding of 0
 /// gets no push, and neither does a system whose particles are not such a grid; a `Q16`
-/// volume past the format's range gets none and the step reports it `saturated`. Cost: six
-/// cross products a particle, then one division.
+/// volume past the format's range gets none and the step reports it `saturated`. Cost: nine
+/// cross products a particle (three for the volume, six for the pushes) and one division.
 ///
 /// Measured (`tests/suite/pressure.rs`): a ring of 16 particles comes to rest at the radius
 /// where its springs balance its gas (the closed form, by bisection) within 1% (to 5
