@@ -154,31 +154,20 @@ fn draw_sail(
     shaded: bool,
 ) {
     let screen: Vec<[f32; 3]> = pos.iter().map(|&p| cam.project(arr(p))).collect();
+    if shaded {
+        img.grid(&screen[..nu * nv], nu, |_, p| shade(arr(nor[p]), CANVAS));
+        return;
+    }
     let ink = [40, 40, 40];
     let flat = |k: usize| [screen[k][0], screen[k][1]];
     for j in 0..nv {
         for i in 0..nu {
             let k = j * nu + i;
-            if !shaded {
-                if i + 1 < nu {
-                    img.line(flat(k), flat(k + 1), ink);
-                }
-                if j + 1 < nv {
-                    img.line(flat(k), flat(k + nu), ink);
-                }
-                continue;
+            if i + 1 < nu {
+                img.line(flat(k), flat(k + 1), ink);
             }
-            if i + 1 < nu && j + 1 < nv {
-                let q = [k, k + 1, k + nu, k + nu + 1];
-                let c = |k: usize| shade(arr(nor[k]), CANVAS);
-                img.triangle(
-                    [screen[q[0]], screen[q[1]], screen[q[2]]],
-                    [c(q[0]), c(q[1]), c(q[2])],
-                );
-                img.triangle(
-                    [screen[q[1]], screen[q[3]], screen[q[2]]],
-                    [c(q[1]), c(q[3]), c(q[2])],
-                );
+            if j + 1 < nv {
+                img.line(flat(k), flat(k + nu), ink);
             }
         }
     }

@@ -141,26 +141,14 @@ impl Buoy {
         }
         let local = |p: Vec3<f32>| cam.project([p.x - c.x, p.y, p.z - c.z]);
         let screen: Vec<[f32; 3]> = pos.iter().map(|&p| local(p)).collect();
-        for b in 0..NV - 1 {
-            for a in 0..NU - 1 {
-                let base = if (a * 8 / (NU - 1)).is_multiple_of(2) {
-                    RED
-                } else {
-                    WHITE
-                };
-                let k = b * NU + a;
-                let q = [k, k + 1, k + NU, k + NU + 1];
-                let colour = |k: usize| shade(arr(nor[k]), base);
-                img.triangle(
-                    [screen[q[0]], screen[q[1]], screen[q[2]]],
-                    [colour(q[0]), colour(q[1]), colour(q[2])],
-                );
-                img.triangle(
-                    [screen[q[1]], screen[q[3]], screen[q[2]]],
-                    [colour(q[1]), colour(q[3]), colour(q[2])],
-                );
-            }
-        }
+        // Eight bands round the ring, each cell's colour its band's.
+        img.grid(&screen, NU, |cell, p| {
+            let band = (cell % NU) * 8 / (NU - 1);
+            shade(
+                arr(nor[p]),
+                if band.is_multiple_of(2) { RED } else { WHITE },
+            )
+        });
     }
 }
 

@@ -72,6 +72,28 @@ impl Image {
         }
     }
 
+    /// A grid of points on screen (`screen`, rows of `columns`, `[x, y, depth]`), each cell
+    /// filled as two triangles; `colour(cell, point)` is the colour at a corner `point` of
+    /// cell `cell` (both flat indices), so that a cell's own colour can change at its edge.
+    pub fn grid(
+        &mut self,
+        screen: &[[f32; 3]],
+        columns: usize,
+        colour: impl Fn(usize, usize) -> [f32; 3],
+    ) {
+        let rows = screen.len().checked_div(columns).unwrap_or(0);
+        for j in 0..rows.saturating_sub(1) {
+            for i in 0..columns.saturating_sub(1) {
+                let k = j * columns + i;
+                let q = [k, k + 1, k + columns, k + columns + 1];
+                let c = |p: usize| colour(k, p);
+                for t in [[q[0], q[1], q[2]], [q[1], q[3], q[2]]] {
+                    self.triangle(t.map(|p| screen[p]), t.map(c));
+                }
+            }
+        }
+    }
+
     /// A triangle with per-vertex colours, depth-tested (smaller `z` is nearer).
     pub fn triangle(&mut self, v: [[f32; 3]; 3], colors: [[f32; 3]; 3]) {
         let area =

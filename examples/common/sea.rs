@@ -171,20 +171,7 @@ impl Harbour {
         }
         // The band is background: the boats draw over it.
         img.clear_depth();
-        for j in 0..DRAWN - 1 {
-            for i in 0..DRAWN - 1 {
-                let k = j * DRAWN + i;
-                let q = [k, k + 1, k + DRAWN, k + DRAWN + 1];
-                img.triangle(
-                    [screen[q[0]], screen[q[1]], screen[q[2]]],
-                    [colours[q[0]], colours[q[1]], colours[q[2]]],
-                );
-                img.triangle(
-                    [screen[q[1]], screen[q[3]], screen[q[2]]],
-                    [colours[q[1]], colours[q[3]], colours[q[2]]],
-                );
-            }
-        }
+        img.grid(&screen, DRAWN, |_, p| colours[p]);
     }
 }
 
