@@ -215,12 +215,15 @@ impl<S: Scalar, const U: usize, const V: usize> Topology<S> for TorusSprings<S, 
         self.torn.fingerprint(self.materials(), key, mix)
     }
     fn snap<P: Point<Scalar = S>>(&mut self, x: &[P]) -> usize {
+        // Each family's limit along each row, once: not once a spring.
         let materials = self.materials();
-        let (snap, rest) = (self.snap, self.rest);
-        self.torn.snap(x, |f, j| {
-            let class = FAMILIES[f].2;
-            snap[class].length(rest[j][f], materials[class])
-        })
+        let limits: [[S; 6]; V] = core::array::from_fn(|j| {
+            core::array::from_fn(|f| {
+                let class = FAMILIES[f].2;
+                self.snap[class].length(self.rest[j][f], materials[class])
+            })
+        });
+        self.torn.snap(x, |f, j| limits[j][f])
     }
 }
 
