@@ -40,11 +40,11 @@ use crate::{Point, Scalar};
 ///   chain keeps feeding such velocity.
 ///   More solves keep more (16 solves of 2 iterations: 39% to 72%).
 ///
-/// Cost: per iteration, a square root, a division and about 30 multiply-adds a link; the
-/// same at every stiffness (within 1.04× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)),
-/// 1.4 times symplectic Euler's frame on the catapult rope's own soft springs. On a
-/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 30 695 instructions a
-/// step for 8 particles (`examples/mcu_catapult.rs`).
+/// Cost: per iteration, a square root, two divisions and about 15 multiplications a link;
+/// the same at every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section
+/// (j)), 1.38 times symplectic Euler's frame on the catapult rope's own soft springs. On a
+/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 26 148 instructions a
+/// step for 8 particles, about 16 600 on average (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); an inextensible rope stops once
@@ -263,7 +263,10 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             }
             let d = x[i + 1] - x[i];
             let l = length[i];
-            let b = -(l - rest[i]) - compliance[i] * lambda[i];
+            let mut b = rest[i] - l;
+            if compliance[i] > zero {
+                b -= compliance[i] * lambda[i];
+            }
             if l > tiny_length::<P::Scalar>() {
                 (dir[i], solved[i]) = (d * (P::Scalar::ONE / l), b);
             } else {
@@ -304,14 +307,19 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
         }
         let before = Sh::flat_mut(&mut self.before);
         before.copy_from_slice(x);
-        let mut share = P::Scalar::ONE;
         for halving in 0..=MAX_HALVINGS {
-            for i in 0..links {
-                if dir[i] != P::default() {
-                    let moved = dir[i] * (solved[i] * share);
-                    x[i] -= moved * w[i];
-                    x[i + 1] += moved * w[i + 1];
+            // Each particle moves by the difference of its two links' pulls.
+            let mut pull = P::default();
+            for i in 0..x.len() {
+                let out = if i < links && dir[i] != P::default() {
+                    dir[i] * solved[i]
+                } else {
+                    P::default()
+                };
+                if w[i] > zero {
+                    x[i] += (pull - out) * w[i];
                 }
+                pull = out;
             }
             let after = measure(x, rest, linked, length);
             self.measured = Some(after);
@@ -319,11 +327,13 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 break;
             }
             x.copy_from_slice(before);
-            share = share * P::Scalar::ratio(1, 2);
+            for s in solved.iter_mut() {
+                *s = *s * P::Scalar::ratio(1, 2);
+            }
         }
         for i in 0..links {
             if dir[i] != P::default() {
-                lambda[i] += solved[i] * share;
+                lambda[i] += solved[i];
             }
         }
     }
