@@ -36,6 +36,14 @@ pub trait Point:
     /// Euclidean length, overflow-free inside the format's range (see [`Scalar::norm`]).
     fn length(self) -> Self::Scalar;
 
+    /// [`length`](Self::length) and its inverse (0 for a zero vector), for a length and a
+    /// direction at once: see [`Scalar::norm_and_inverse`] (in `Q16`, no division).
+    #[inline]
+    fn length_and_inverse(self) -> (Self::Scalar, Self::Scalar) {
+        let l = self.length();
+        (l, l.approx_recip())
+    }
+
     /// Dot product. In `Q16` it saturates once `|a|·|b|` passes 32768.
     fn dot(self, other: Self) -> Self::Scalar;
 
@@ -298,6 +306,10 @@ macro_rules! impl_ops {
             #[inline]
             fn length(self) -> S {
                 S::norm(&[$(self.$f),+])
+            }
+            #[inline]
+            fn length_and_inverse(self) -> (S, S) {
+                S::norm_and_inverse(&[$(self.$f),+])
             }
             #[inline]
             fn dot(self, o: Self) -> S {

@@ -27,7 +27,7 @@ use fixed::types::I16F16;
 use super::q16_bits::{div_long, mul_halves};
 #[cfg(target_pointer_width = "64")]
 use super::q16_bits::{div_wide, mul_wide};
-use super::q16_bits::{inv_sqrt_bits, isqrt, square};
+use super::q16_bits::{inv_sqrt_bits, isqrt, reciprocal_bits, root_and_inverse, square};
 use crate::Scalar;
 
 /// A Q16.16 fixed-point number with saturating, round-to-nearest arithmetic.
@@ -231,6 +231,14 @@ impl defmt::Format for Q16 {
     }
 }
 
+/// The sum of the coordinates' squared raw bits (Q32.32 values below 2⁶² each), saturated.
+#[inline]
+fn squared_bits(xs: &[Q16]) -> u64 {
+    xs.iter().fold(0u64, |acc, x| {
+        acc.saturating_add(square(x.to_bits().unsigned_abs()))
+    })
+}
+
 impl Scalar for Q16 {
     const ZERO: Self = Q16::from_bits(0);
     const ONE: Self = Q16::from_bits(1 << 16);
@@ -305,12 +313,24 @@ impl Scalar for Q16 {
     }
 
     fn norm(xs: &[Self]) -> Self {
-        // Squares of raw bits are Q32.32 values below 2^62; three of them fit a u64.
-        let mut acc: u64 = 0;
-        for &x in xs {
-            acc = acc.saturating_add(square(x.to_bits().unsigned_abs()));
+        Q16::saturate(isqrt(squared_bits(xs)) as i64)
+    }
+
+    #[inline]
+    fn norm_and_inverse(xs: &[Self]) -> (Self, Self) {
+        let (root, inverse) = root_and_inverse(squared_bits(xs));
+        (
+            Q16::saturate(i64::from(root)),
+            Q16::from_bits(inverse as i32),
+        )
+    }
+
+    #[inline]
+    fn approx_recip(self) -> Self {
+        match self.to_bits() {
+            x if x > 0 => Q16::from_bits(reciprocal_bits(x as u32) as i32),
+            _ => Self::ZERO,
         }
-        Q16::saturate(isqrt(acc) as i64)
     }
 
     #[inline]

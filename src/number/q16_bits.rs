@@ -154,7 +154,6 @@ fn digit(rem: u32, next: u32, divisor: u32, z: u32) -> (u32, u32) {
 
 /// `2³¹ / t` at the middle of each 128th of `t ∈ [2¹⁵, 2¹⁶)`: the first guess of
 /// [`reciprocal_top`], within 2⁻⁸ relative.
-#[cfg(any(test, not(target_pointer_width = "64")))]
 const RECIPROCAL_GUESS: [u16; 128] = {
     let mut table = [0u16; 128];
     let mut i = 0;
@@ -170,7 +169,6 @@ const RECIPROCAL_GUESS: [u16; 128] = {
 /// [`RECIPROCAL_GUESS`] and one Newton step: at most `2³¹ / t` (Newton's step for a
 /// reciprocal lands below it, and each shift rounds down) and within 2⁻¹⁴ of it (tested for
 /// every `t`), so a digit's estimate is at most 2 off.
-#[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline]
 fn reciprocal_top(t: u32) -> u32 {
     let z = u32::from(RECIPROCAL_GUESS[(t >> 8) as usize & 127]);
@@ -208,8 +206,17 @@ fn width(x: u32) -> u32 {
 /// instructions on a Cortex-M0, a third of digit-by-digit's. Equal to `u64::isqrt` for
 /// every input (tested).
 pub(super) fn isqrt(n: u64) -> u64 {
+    u64::from(root_and_inverse(n).0)
+}
+
+/// `floor(√n)` as [`isqrt`] finds it, and `2³² / √n` (saturated at `i32::MAX`; 0 for 0) from
+/// the same reciprocal estimate, within 2⁻¹⁴ relative or one unit: for `n` the sum of a
+/// `Q16` vector's squared raw bits, the raw bits of its length and of its inverse, with no
+/// division.
+#[inline]
+pub(super) fn root_and_inverse(n: u64) -> (u32, u32) {
     if n == 0 {
-        return 0;
+        return (0, 0);
     }
     let high = (n >> 32) as u32;
     let bits = if high != 0 {
@@ -246,7 +253,40 @@ pub(super) fn isqrt(n: u64) -> u64 {
     while root < u32::MAX && square(root + 1) <= n {
         root += 1;
     }
-    u64::from(root)
+    // `1/√n = 2^(shift/2) / √m` and `1/√m ≈ z / 2⁴⁷`: in units of 2⁻³², `z·2^(shift/2 − 15)`.
+    let half = shift / 2;
+    let inverse = if half >= 15 {
+        let up = half - 15;
+        if z >> (31 - up) != 0 {
+            i32::MAX as u32
+        } else {
+            z << up
+        }
+    } else {
+        let down = 15 - half;
+        (z + (1 << (down - 1))) >> down
+    };
+    (root, inverse)
+}
+
+/// `2³² / x` for `x > 0` (the raw bits of a `Q16`'s inverse), saturated at `i32::MAX`: the
+/// divisor's top half through [`reciprocal_top`], shifted back. Within 2⁻¹³ relative or one
+/// unit (tested), in about 30 instructions.
+pub(super) fn reciprocal_bits(x: u32) -> u32 {
+    let shift = 32 - width(x);
+    let z = reciprocal_top((x << shift) >> 16);
+    // `1/x = 2^shift / (x·2^shift)` and `1/(x·2^shift) ≈ z / 2⁴⁷`.
+    if shift >= 15 {
+        let up = shift - 15;
+        if up >= 16 || z >> (31 - up) != 0 {
+            i32::MAX as u32
+        } else {
+            z << up
+        }
+    } else {
+        let down = 15 - shift;
+        (z + (1 << (down - 1))) >> down
+    }
 }
 
 /// `1/√u` at the middle of each eighth of `u ∈ [1, 4)`, in units of 2⁻¹⁶: the first guess of
@@ -515,6 +555,40 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn quick_reciprocal_and_root_inverse_hold_their_bounds() {
+        let within = |got: u32, exact: f64, relative: f64| {
+            let exact = exact.min(i32::MAX as f64);
+            (got as f64 - exact).abs() <= (exact * relative).max(1.0)
+        };
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut samples = std::vec::Vec::new();
+        for k in 0..31 {
+            samples.extend([1u32 << k, (1u32 << k) + 1, (2u32 << k) - 1]);
+        }
+        for _ in 0..300_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            samples.push((x as u32 >> 1) >> ((x >> 40) % 31));
+        }
+        for &v in samples.iter().filter(|&&v| v > 0) {
+            let exact = 4_294_967_296.0 / v as f64;
+            assert!(within(reciprocal_bits(v), exact, 1.0 / 8192.0), "1/{v}");
+            // A vector's squared bits: `v²` and sums past 2⁶².
+            for n in [square(v), square(v) * 3, u64::from(v)] {
+                let (root, inverse) = root_and_inverse(n);
+                assert_eq!(u64::from(root), n.isqrt(), "{n}");
+                let exact = 4_294_967_296.0 / (n as f64).sqrt();
+                assert!(
+                    within(inverse, exact, 1.0 / 16384.0),
+                    "1/sqrt {n}: {inverse}"
+                );
+            }
+        }
+        assert_eq!(root_and_inverse(0), (0, 0));
     }
 
     #[test]

@@ -87,6 +87,18 @@ pub trait Scalar:
             Self::ZERO
         }
     }
+    /// `1 / self` for `self > 0`, possibly approximate; 0 otherwise. Floats: a division,
+    /// exact to its rounding. `Q16`: a table and one Newton step in 32-bit integers, within
+    /// 2⁻¹³ relative or one unit of 2⁻¹⁶ (no division: for a solve's pivots, where the last
+    /// bits change no result that matters).
+    #[inline]
+    fn approx_recip(self) -> Self {
+        if self > Self::ZERO {
+            Self::ONE / self
+        } else {
+            Self::ZERO
+        }
+    }
     /// Absolute value (saturating for `Q16`).
     fn abs(self) -> Self;
     /// `false` for NaN and infinities, and for a `Q16` that has saturated to its range.
@@ -98,6 +110,15 @@ pub trait Scalar:
     /// not overflow for coordinates inside the format's range (`Q16` uses a 64-bit
     /// accumulator, so vectors longer than 181 are fine).
     fn norm(xs: &[Self]) -> Self;
+    /// [`norm`](Self::norm) and its inverse (0 for a zero norm), for a length and a
+    /// direction at once. Floats: a division, exact to its rounding. `Q16`: the norm as
+    /// exact as [`norm`](Self::norm)'s, the inverse from the root's own reciprocal estimate,
+    /// within 2⁻¹⁴ relative or one unit of 2⁻¹⁶ (no division).
+    #[inline]
+    fn norm_and_inverse(xs: &[Self]) -> (Self, Self) {
+        let n = Self::norm(xs);
+        (n, n.approx_recip())
+    }
     /// `ceil(self)` as a `usize`, clamped to `0..=max`; NaN gives `max`.
     fn ceil_usize(self, max: usize) -> usize;
     /// `floor(self)` as an `i32`, saturating at the `i32` range; NaN gives 0.

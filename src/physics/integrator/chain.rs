@@ -15,9 +15,10 @@ use crate::{Point, Scalar};
 /// together: each of `iterations` Newton iterations builds the links' tridiagonal system
 /// `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` (`J` the links' directions, `W` the inverse masses, `C`
 /// their stretch, `α̃ = 1 / (k h²)` their compliance), solves it directly (Thomas's
-/// algorithm: one division a link) and takes the step, or half of it and so on while that
+/// algorithm: one inverse a link) and takes the step, or half of it and so on while that
 /// would not lower the links' squared stretch (a line search: far from the solution, as in
-/// a whip, a full step overshoots). With `inextensible` the compliance is 0 and every link
+/// a whip, a full step overshoots). The last of two or more iterations starts near the
+/// solution and is taken whole, unmeasured. With `inextensible` the compliance is 0 and every link
 /// holds its rest length; otherwise the links keep their springs' stiffness `k`, as backward
 /// Euler would, with no stability limit. Other springs (a hub, bending springs, a cloth's
 /// shear) are projected once an iteration as [`Xpbd`](super::Xpbd) does. A held particle
@@ -40,11 +41,13 @@ use crate::{Point, Scalar};
 ///   chain keeps feeding such velocity.
 ///   More solves keep more (16 solves of 2 iterations: 39% to 72%).
 ///
-/// Cost: per iteration, a square root, two divisions and about 15 multiplications a link;
-/// the same at every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section
-/// (j)), 1.38 times symplectic Euler's frame on the catapult rope's own soft springs. On a
-/// Cortex-M0 in Q16.16, one solve of up to 2 iterations takes up to 26 148 instructions a
-/// step for 8 particles, about 16 600 on average (`examples/mcu_catapult.rs`).
+/// Cost: per iteration, a square root, two inverses and about 15 multiplications a link
+/// (in `Q16` no division: a link's inverse length comes with its root,
+/// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
+/// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.38
+/// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
+/// Q16.16, one solve of up to 2 iterations takes up to 19 568 instructions a step for 8
+/// particles, and a frame with its 33-point curve up to 24 745 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); an inextensible rope stops once
@@ -153,6 +156,7 @@ impl DirectChain {
             solved: Sh::filled(zero),
             before: Sh::filled(P::default()),
             length: Sh::filled(zero),
+            inverse: Sh::filled(zero),
             measured: None,
         };
         let inv_h = P::Scalar::ONE / h;
@@ -173,8 +177,12 @@ impl DirectChain {
         // rope's length (springs stretch by design: they take every iteration).
         let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
         let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
-        for _ in 0..self.iterations.max(1) {
-            links.solve(Sh::flat_mut(&mut state.pos), w);
+        let iterations = self.iterations.max(1);
+        for iteration in 1..=iterations {
+            // The last of several iterations starts near the solution, where a Newton step
+            // lowers the stretch: it is taken whole, unmeasured.
+            let whole = iteration > 1 && iteration == iterations;
+            links.solve(Sh::flat_mut(&mut state.pos), w, whole);
             if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
             } else if self.inextensible
@@ -207,27 +215,28 @@ struct Links<P: Point, Sh: Shape> {
     solved: Sh::PerParticle<P::Scalar>,
     /// The positions before a Newton step, for its line search.
     before: Sh::PerParticle<P>,
-    /// Each link's length at the positions now, and their squared stretch, once measured
-    /// (the line search measures them; the next iteration starts from them).
+    /// Each link's length and its inverse at the positions now, and their squared stretch,
+    /// once measured (the line search measures them; the next iteration starts from them).
     length: Sh::PerParticle<P::Scalar>,
+    inverse: Sh::PerParticle<P::Scalar>,
     measured: Option<P::Scalar>,
 }
 
 /// Most times a Newton step is halved before it is taken as it is.
 const MAX_HALVINGS: u8 = 4;
 
-/// Each link's length into `length`, and `Σ (l − rest)²` over the links: what a Newton step
-/// must lower.
+/// Each link's length and its inverse into `length`, and `Σ (l − rest)²` over the links:
+/// what a Newton step must lower.
 fn measure<P: Point>(
     x: &[P],
     rest: &[P::Scalar],
     linked: &[bool],
-    length: &mut [P::Scalar],
+    (length, inverse): (&mut [P::Scalar], &mut [P::Scalar]),
 ) -> P::Scalar {
     let mut sum = P::Scalar::ZERO;
     for i in 0..x.len().saturating_sub(1) {
         if linked[i] {
-            length[i] = x[i + 1].distance(x[i]);
+            (length[i], inverse[i]) = (x[i + 1] - x[i]).length_and_inverse();
             let c = length[i] - rest[i];
             sum += c * c;
         }
@@ -236,10 +245,11 @@ fn measure<P: Point>(
 }
 
 impl<P: Point, Sh: Shape> Links<P, Sh> {
-    /// One Newton iteration: the links stretched at `x` (a rope pulls, never pushes), their
-    /// tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` solved by Thomas's algorithm (one
-    /// division a link), and the particles moved by it. A slack link sits the iteration out.
-    fn solve(&mut self, x: &mut [P], w: &[P::Scalar]) {
+    /// One Newton iteration: the links' tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` at
+    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it:
+    /// with `whole`, by the whole step, unmeasured; otherwise by the line search. A link too
+    /// short to have a direction sits the iteration out.
+    fn solve(&mut self, x: &mut [P], w: &[P::Scalar], whole: bool) {
         let zero = P::Scalar::ZERO;
         let (rest, compliance) = (Sh::flat(&self.rest), Sh::flat(&self.compliance));
         let (linked, lambda) = (Sh::flat(&self.linked), Sh::flat_mut(&mut self.lambda));
@@ -250,9 +260,10 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
         );
         let links = x.len().saturating_sub(1);
         let length = Sh::flat_mut(&mut self.length);
+        let inverse = Sh::flat_mut(&mut self.inverse);
         let residual = match self.measured {
             Some(residual) => residual,
-            None => measure(x, rest, linked, length),
+            None => measure(x, rest, linked, (length, inverse)),
         };
         // Each link's direction and right-hand side `−C − α̃λ`; a zero direction marks one
         // too short to have a direction.
@@ -268,7 +279,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 b -= compliance[i] * lambda[i];
             }
             if l > tiny_length::<P::Scalar>() {
-                (dir[i], solved[i]) = (d * (P::Scalar::ONE / l), b);
+                (dir[i], solved[i]) = (d * inverse[i], b);
             } else {
                 lambda[i] = zero;
             }
@@ -288,7 +299,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 (prev_ratio, prev_solved, prev_off) = (zero, zero, zero);
                 continue;
             }
-            let inv = P::Scalar::ONE / diag;
+            let inv = diag.approx_recip();
             let off = if i + 1 < links && dir[i + 1] != P::default() {
                 -(w[i + 1] * dir[i].dot(dir[i + 1]))
             } else {
@@ -306,7 +317,9 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             solved[i] -= ratio[i] * solved[i + 1];
         }
         let before = Sh::flat_mut(&mut self.before);
-        before.copy_from_slice(x);
+        if !whole {
+            before.copy_from_slice(x);
+        }
         for halving in 0..=MAX_HALVINGS {
             // Each particle moves by the difference of its two links' pulls.
             let mut pull = P::default();
@@ -321,7 +334,11 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 }
                 pull = out;
             }
-            let after = measure(x, rest, linked, length);
+            if whole {
+                self.measured = None;
+                return;
+            }
+            let after = measure(x, rest, linked, (length, inverse));
             self.measured = Some(after);
             if halving == MAX_HALVINGS || after <= residual {
                 break;
