@@ -343,11 +343,12 @@ pub(crate) fn natural_net<P: Point, const U: usize, const V: usize>(
 
 /// `∂u × ∂v`, normalised: in floats by [`Scalar::approx_inv_sqrt`] of its squared length
 /// (exact, or micromath's within 3.5% with the `micromath` feature: the direction stays
-/// exact, the length is within `1 ± 0.035`); in fixed point the partials are normalised
-/// first, so that their product stays in range.
+/// exact, the length is within `1 ± 0.035`); in fixed point the partials are first scaled
+/// by powers of two to a largest coordinate in `[½, 2)`, so that their product stays in
+/// range (one normalisation, not three).
 fn unit_normal<S: Scalar>(du: Vec3<S>, dv: Vec3<S>) -> Option<Vec3<S>> {
     if S::FIXED_POINT {
-        du.normalize()?.cross(dv.normalize()?).normalize()
+        du.balanced()?.cross(dv.balanced()?).normalize()
     } else {
         let n = du.cross(dv);
         let squared = n.dot(n);
@@ -547,6 +548,39 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// `Q16` normals (the partials scaled by powers of two, then one normalisation) point
+    /// where the f64 ones do and are of unit length, both within 2⁻¹² (a few units of the
+    /// format's last place).
+    #[test]
+    fn q16_normals_keep_their_direction() {
+        use crate::Q16;
+        let g = grid();
+        let q: [[Vec3<Q16>; 5]; 4] = core::array::from_fn(|j| {
+            core::array::from_fn(|i| {
+                let p = g[j][i];
+                let c = |x: f64| Q16::from_f64(x);
+                Vec3::new(c(p.x), c(p.y), c(p.z))
+            })
+        });
+        let t = SurfaceTable::<f64, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
+        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
+        let tq = SurfaceTable::<Q16, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
+        let tvq = SurfaceTable::<Q16, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
+        let (mut p, mut n) = ([Vec3::default(); 63], [Vec3::default(); 63]);
+        let (mut pq, mut nq) = ([Vec3::default(); 63], [Vec3::default(); 63]);
+        sample(&g, &t, &tv, &mut p, &mut n).unwrap();
+        sample(&q, &tq, &tvq, &mut pq, &mut nq).unwrap();
+        for (a, b) in n.iter().zip(&nq) {
+            let b = Vec3::new(b.x.to_f64(), b.y.to_f64(), b.z.to_f64());
+            assert!(
+                (b.length() - 1.0).abs() <= 1.0 / 4096.0,
+                "length {}",
+                b.length()
+            );
+            assert!(a.cross(b).length() < 1.0 / 4096.0, "direction {a:?} {b:?}");
         }
     }
 
