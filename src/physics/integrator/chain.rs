@@ -33,18 +33,23 @@ use crate::{Point, Scalar};
 /// - the catapult's rope (1.6 m, 0.4 kg, 8 particles) whirled with its 3 kg penguin: links
 ///   within 0.01% of their length, the drawn curve within 0.5% (0.21% measured;
 ///   symplectic Euler on the same springs stretches 55%);
-/// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.25%);
+/// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.001% on the links,
+///   0.11% on the drawn curve);
 /// - 1 000 times: not held (the links stretch several times over); use a shorter step;
 /// - an undamped released rope keeps 18% of its swing's energy over 10 s without a bob and
 ///   40% to 48% with one of 1 to 10 times its mass, against 96% to 97% for symplectic
 ///   Euler and Verlet: a solve removes the velocity that stretches a link, and a whipping
 ///   chain keeps feeding such velocity.
-///   More solves keep more (16 solves of 2 iterations: 39% to 72%).
+///   16 solves of 2 iterations keep 39% without a bob and 72% with one of 10 times the
+///   rope's mass, but 25% with one of its own mass.
+///   (Pulling each link along its direction at the solve's start, as SHAKE does, keeps 99%
+///   without a bob, but the light links beside a heavy bob then whip out of control: their
+///   sideways motion under its tension is stepped explicitly.)
 ///
 /// Cost: per iteration, a square root, two inverses and about 15 multiplications a link
 /// (in `Q16` no division: a link's inverse length comes with its root,
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
-/// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.38
+/// every stiffness (within 1.01× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.25
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
 /// Q16.16, one solve of up to 2 iterations takes up to 19 568 instructions a step for 8
 /// particles, and a frame with its 33-point curve up to 24 745 (`examples/mcu_catapult.rs`).
