@@ -3,7 +3,7 @@
 //! (`hang`, as the catapult's penguin), released 40° from hanging and swinging, its links
 //! solved together each frame by [`DirectChain`] (one solve of up to 2 tridiagonal Newton
 //! iterations, the second only where the first leaves a link off its length; one substep a
-//! frame at any stiffness). 600 steps at 60 Hz, in Q16.16 on a Cortex-M0 (at most 24 745
+//! frame at any stiffness). 600 steps at 60 Hz, in Q16.16 on a Cortex-M0 (at most 24 539
 //! instructions a frame, its target 25 000) and in f32 on a Cortex-M4F.
 //!
 //! It prints what `mcu_rope` prints, plus `stretch_permille=`, the rope's largest stretch

