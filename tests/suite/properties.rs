@@ -294,6 +294,26 @@ mod q16 {
             }
             let wide_norm = ((a * a + b * b) as u128).isqrt() as i128;
             prop_assert_eq!(Q16::norm(&[x, y]).to_bits(), clamp(wide_norm));
+            // The length with its inverse: the same length, and an inverse within 2⁻¹⁴
+            // relative or one unit (saturated for the tiniest vectors); the quick reciprocal
+            // within 2⁻¹³ or one unit, 0 for what is not positive.
+            let (length, inverse) = Vec2::new(x, y).length_and_inverse();
+            prop_assert_eq!(length.to_bits(), clamp(wide_norm));
+            let exact = |r: f64| r.min(i32::MAX as f64);
+            if wide_norm > 0 {
+                let want = exact(2f64.powi(32) / ((a * a + b * b) as f64).sqrt());
+                let got = inverse.to_bits() as f64;
+                prop_assert!((got - want).abs() <= (want / 16384.0).max(1.0), "{got} {want}");
+            } else {
+                prop_assert_eq!(inverse, Q16::ZERO);
+            }
+            let recip = x.approx_recip().to_bits() as f64;
+            if a > 0 {
+                let want = exact(2f64.powi(32) / a as f64);
+                prop_assert!((recip - want).abs() <= (want / 8192.0).max(1.0), "{recip} {want}");
+            } else {
+                prop_assert_eq!(recip, 0.0);
+            }
         }
 
         #[test]
