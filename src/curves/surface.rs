@@ -551,35 +551,37 @@ mod tests {
         }
     }
 
+    /// The test grid's natural-spline normals in `f64` and in `S` (widened to `f64`), 9×7.
+    fn normals_against_f64<S: Scalar>() -> [(Vec3<f64>, Vec3<f64>); 63] {
+        let g = grid();
+        let gs: [[Vec3<S>; 5]; 4] = core::array::from_fn(|j| {
+            core::array::from_fn(|i| {
+                let p = g[j][i];
+                Vec3::new(S::from_f64(p.x), S::from_f64(p.y), S::from_f64(p.z))
+            })
+        });
+        let t = SurfaceTable::<f64, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
+        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
+        let ts = SurfaceTable::<S, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
+        let tvs = SurfaceTable::<S, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
+        let (mut p, mut n) = ([Vec3::default(); 63], [Vec3::default(); 63]);
+        let (mut ps, mut ns) = ([Vec3::default(); 63], [Vec3::default(); 63]);
+        sample(&g, &t, &tv, &mut p, &mut n).unwrap();
+        sample(&gs, &ts, &tvs, &mut ps, &mut ns).unwrap();
+        core::array::from_fn(|k| {
+            let b = ns[k];
+            (n[k], Vec3::new(b.x.to_f64(), b.y.to_f64(), b.z.to_f64()))
+        })
+    }
+
     /// `Q16` normals (the partials scaled by powers of two, then one normalisation) point
     /// where the f64 ones do and are of unit length, both within 2⁻¹² (a few units of the
     /// format's last place).
     #[test]
     fn q16_normals_keep_their_direction() {
-        use crate::Q16;
-        let g = grid();
-        let q: [[Vec3<Q16>; 5]; 4] = core::array::from_fn(|j| {
-            core::array::from_fn(|i| {
-                let p = g[j][i];
-                let c = |x: f64| Q16::from_f64(x);
-                Vec3::new(c(p.x), c(p.y), c(p.z))
-            })
-        });
-        let t = SurfaceTable::<f64, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
-        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
-        let tq = SurfaceTable::<Q16, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
-        let tvq = SurfaceTable::<Q16, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
-        let (mut p, mut n) = ([Vec3::default(); 63], [Vec3::default(); 63]);
-        let (mut pq, mut nq) = ([Vec3::default(); 63], [Vec3::default(); 63]);
-        sample(&g, &t, &tv, &mut p, &mut n).unwrap();
-        sample(&q, &tq, &tvq, &mut pq, &mut nq).unwrap();
-        for (a, b) in n.iter().zip(&nq) {
-            let b = Vec3::new(b.x.to_f64(), b.y.to_f64(), b.z.to_f64());
-            assert!(
-                (b.length() - 1.0).abs() <= 1.0 / 4096.0,
-                "length {}",
-                b.length()
-            );
+        for (a, b) in normals_against_f64::<crate::Q16>() {
+            let length = b.length();
+            assert!((length - 1.0).abs() <= 1.0 / 4096.0, "length {length}");
             assert!(a.cross(b).length() < 1.0 / 4096.0, "direction {a:?} {b:?}");
         }
     }
@@ -589,23 +591,7 @@ mod tests {
     /// without it).
     #[test]
     fn f32_normals_keep_their_direction() {
-        let g = grid();
-        let g32: [[Vec3<f32>; 5]; 4] = core::array::from_fn(|j| {
-            core::array::from_fn(|i| {
-                let p = g[j][i];
-                Vec3::new(p.x as f32, p.y as f32, p.z as f32)
-            })
-        });
-        let t = SurfaceTable::<f64, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
-        let tv = SurfaceTable::<f64, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
-        let t32 = SurfaceTable::<f32, 5, 16>::new(Smoothing::NaturalSpline, 9).unwrap();
-        let tv32 = SurfaceTable::<f32, 4, 16>::new(Smoothing::NaturalSpline, 7).unwrap();
-        let (mut p, mut n) = ([Vec3::default(); 63], [Vec3::default(); 63]);
-        let (mut p32, mut n32) = ([Vec3::default(); 63], [Vec3::default(); 63]);
-        sample(&g, &t, &tv, &mut p, &mut n).unwrap();
-        sample(&g32, &t32, &tv32, &mut p32, &mut n32).unwrap();
-        for (a, b) in n.iter().zip(&n32) {
-            let b = Vec3::new(f64::from(b.x), f64::from(b.y), f64::from(b.z));
+        for (a, b) in normals_against_f64::<f32>() {
             assert!((b.length() - 1.0).abs() <= 0.035, "length {}", b.length());
             assert!(
                 a.cross(b).length() / b.length() < 1e-5,
