@@ -87,10 +87,11 @@ pub(super) fn div_wide(a: i32, b: i32) -> Q16 {
 /// The same quotient in 32-bit registers, for cores without a divider (a Cortex-M0 would
 /// call a ~550-instruction library routine for the 64-bit form): the divisor shifted to its
 /// top bit, then two 16-bit quotient digits, each estimated from a reciprocal of the
-/// divisor's top half ([`reciprocal_top`]) and made exact by its remainder. About 200
-/// instructions on a Cortex-M0 for any operands (measured over a rope's solves; binary long
-/// division took about 310 there, 9 a quotient bit). Bit-identical to [`div_wide`] (tested
-/// on edge cases and 600 000 random pairs).
+/// divisor's top half ([`reciprocal_top`]) and made exact by its remainder: the same work
+/// for any operands, where binary long division took 9 instructions a quotient bit (on a
+/// Cortex-M0 it took the catapult's costliest frame, 29 divisions, from 35 905 to 32 756
+/// instructions, `examples/mcu_catapult.rs`). Bit-identical to [`div_wide`] (tested on edge
+/// cases and 600 000 random pairs).
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(never)]
 pub(super) fn div_long(a: i32, b: i32) -> Q16 {
@@ -271,7 +272,7 @@ pub(super) fn root_and_inverse(n: u64) -> (u32, u32) {
 
 /// `2³² / x` for `x > 0` (the raw bits of a `Q16`'s inverse), saturated at `i32::MAX`: the
 /// divisor's top half through [`reciprocal_top`], shifted back. Within 2⁻¹³ relative or one
-/// unit (tested), in about 60 instructions on a Cortex-M0.
+/// unit (tested), with no division.
 pub(super) fn reciprocal_bits(x: u32) -> u32 {
     let shift = 32 - width(x);
     let z = reciprocal_top((x << shift) >> 16);
