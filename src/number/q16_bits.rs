@@ -88,10 +88,10 @@ pub(super) fn div_wide(a: i32, b: i32) -> Q16 {
 /// call a ~550-instruction library routine for the 64-bit form): the divisor shifted to its
 /// top bit, then two 16-bit quotient digits, each estimated from a reciprocal of the
 /// divisor's top half ([`reciprocal_top`]) and made exact by its remainder: the same work
-/// for any operands, where binary long division took 9 instructions a quotient bit (on a
-/// Cortex-M0 it took the catapult's costliest frame, 29 divisions, from 35 905 to 32 756
-/// instructions, `examples/mcu_catapult.rs`). Bit-identical to [`div_wide`] (tested on edge
-/// cases and 600 000 random pairs).
+/// for any operands, where binary long division took 9 instructions a quotient bit. On a
+/// Cortex-M0 it took the catapult's costliest frame (two divisions a link an iteration)
+/// from 35 905 to 32 756 instructions (`examples/mcu_catapult.rs`). Bit-identical to
+/// [`div_wide`] (tested on edge cases and 600 000 random pairs).
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(never)]
 pub(super) fn div_long(a: i32, b: i32) -> Q16 {
