@@ -181,6 +181,17 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
         self.closed
     }
 
+    /// Sample `k`'s first particle and its four weights and slopes, when it has four (the
+    /// splines): what [`sample`] hoists out of a line of samples.
+    #[inline(always)]
+    fn quad(&self, k: usize) -> Option<(usize, [S; 4], [S; 4])> {
+        let (first, end) = self.support[k];
+        let span = usize::from(first)..usize::from(end);
+        let weights = <[S; 4]>::try_from(self.weights[k].get(span.clone())?).ok()?;
+        let slopes = <[S; 4]>::try_from(self.slopes[k].get(span)?).ok()?;
+        Some((usize::from(first), weights, slopes))
+    }
+
     /// `(Σ w_i p_i, Σ w'_i p_i, Σ w_i q_i)` of sample `k` over `points` and `others` (the
     /// last `P::default()` without `others`), on the sample's non-zero weights only: four
     /// for the splines (unrolled), up to `K` for one Bézier.
@@ -295,11 +306,18 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
     let zero = Vec3::default();
     let mut columns = [[zero; V]; NU];
     let mut column_slopes = [[zero; V]; NU];
-    for (j, row) in net.iter().enumerate() {
-        for a in 0..nu {
-            let (p, du, _) = tu.apply(a, row, None);
-            columns[a][j] = p;
-            column_slopes[a][j] = du;
+    let samples = columns.iter_mut().zip(&mut column_slopes).enumerate();
+    for (a, (column, slopes)) in samples.take(nu) {
+        let points = column.iter_mut().zip(slopes).zip(&net);
+        if let Some((i, w, s)) = tu.quad(a).filter(|&(i, _, _)| i + 4 <= U) {
+            for ((p, du), row) in points {
+                let q = &row[i..i + 4];
+                (*p, *du) = (weigh(q, w), weigh(q, s));
+            }
+        } else {
+            for ((p, du), row) in points {
+                (*p, *du, _) = tu.apply(a, row, None);
+            }
         }
     }
     // Then columns: position, ∂v from the rows' points, ∂u from their slopes.
@@ -308,13 +326,29 @@ pub fn sample<S: Scalar, const U: usize, const V: usize, const NU: usize, const 
         .zip(normals.chunks_exact_mut(nu));
     for (b, (line, line_normals)) in lines.take(nv).enumerate() {
         let samples = columns.iter().zip(&column_slopes);
-        for ((p, n), (column, slopes)) in line.iter_mut().zip(line_normals).zip(samples) {
-            let (at, dv, du) = tv.apply(b, column, Some(slopes));
-            *p = at;
-            *n = unit_normal(du, dv).unwrap_or_default();
+        let points = line.iter_mut().zip(line_normals).zip(samples);
+        // Four weights a line (the splines): read once, not once a sample.
+        if let Some((j, w, s)) = tv.quad(b).filter(|&(j, _, _)| j + 4 <= V) {
+            for ((p, n), (column, slopes)) in points {
+                let (q, r) = (&column[j..j + 4], &slopes[j..j + 4]);
+                *p = weigh(q, w);
+                *n = unit_normal(weigh(r, w), weigh(q, s)).unwrap_or_default();
+            }
+        } else {
+            for ((p, n), (column, slopes)) in points {
+                let (at, dv, du) = tv.apply(b, column, Some(slopes));
+                *p = at;
+                *n = unit_normal(du, dv).unwrap_or_default();
+            }
         }
     }
     Ok(needed)
+}
+
+/// `Σ w_i p_i` over four points (the first four of `points`).
+#[inline(always)]
+fn weigh<S: Scalar>(points: &[Vec3<S>], w: [S; 4]) -> Vec3<S> {
+    points[0] * w[0] + points[1] * w[1] + points[2] * w[2] + points[3] * w[3]
 }
 
 /// Turns a grid of particles into the B-spline control net whose surface passes through
@@ -352,7 +386,8 @@ fn unit_normal<S: Scalar>(du: Vec3<S>, dv: Vec3<S>) -> Option<Vec3<S>> {
     } else {
         let n = du.cross(dv);
         let squared = n.dot(n);
-        (squared > S::ZERO && squared.is_finite()).then(|| n * squared.approx_inv_sqrt())
+        // Positive and finite (`∞ · 0` is NaN): two float comparisons.
+        (squared > S::ZERO && squared * S::ZERO == S::ZERO).then(|| n * squared.approx_inv_sqrt())
     }
 }
 

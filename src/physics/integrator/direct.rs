@@ -83,9 +83,11 @@ impl Integrator for DirectSprings {
     fn memory<S: Scalar, Sh: Shape>() -> Factored<S, Sh> {
         Factored {
             key: None,
+            mass: Sh::filled(S::ZERO),
             factor: Factor {
                 low: Sh::filled(Sh::band(S::ZERO)),
                 inv_d: Sh::filled(S::ZERO),
+                skip: Sh::filled(0),
             },
         }
     }
@@ -128,11 +130,14 @@ impl Integrator for DirectSprings {
 }
 
 /// What [`DirectSprings`] keeps inside its system between steps: the factor of its last
-/// matrix and a 64-bit key of what made it (the step's length, every inverse mass, the
-/// springs' [`fingerprint`](Topology::fingerprint)). A step whose key is the same solves with the factor
-/// kept; any change (a pin, a hang, a snap or a cut, another `dt`) factors again.
+/// matrix, the masses it was built with, and a 64-bit key of what made it (the step's
+/// length, every inverse mass, the springs' [`fingerprint`](Topology::fingerprint)). A step
+/// whose key is the same solves with the factor kept; any change (a pin, a hang, a snap or
+/// a cut, another `dt`) factors again.
 pub struct Factored<S: Scalar, Sh: Shape> {
     key: Option<u64>,
+    /// Each free particle's mass (0 for a held one).
+    mass: Sh::PerParticle<S>,
     factor: Factor<S, Sh>,
 }
 
@@ -165,10 +170,19 @@ fn mix(key: u64, x: u64) -> u64 {
 /// The factor `LDLᵀ` of a banded matrix of band `b` ([`Shape::BAND`]): row `i` of `L` holds
 /// `L[i][j]` at `j + b − i` for the columns `j` from `i − b` to `i − 1` (slots before column
 /// 0 stay 0); `inv_d` the diagonal's inverses (0 for a held particle, whose row is out of
-/// the solve).
+/// the solve). `skip[i]` counts row `i`'s leading zero slots (its envelope: the factor
+/// fills no slot before its first spring), so the factor and the solves pass over the zeros
+/// of a row whose near neighbours are held or far apart.
 struct Factor<S: Scalar, Sh: Shape> {
     low: Sh::PerParticle<Sh::Band<S>>,
     inv_d: Sh::PerParticle<S>,
+    skip: Sh::PerParticle<u16>,
+}
+
+/// The first column of row `i` inside its envelope (`i` for a row of zeros).
+#[inline]
+fn first_column(i: usize, skip: u16, band: usize) -> usize {
+    (i + usize::from(skip)).saturating_sub(band).min(i)
 }
 
 impl<S: Scalar, Sh: Shape> Clone for Factor<S, Sh> {
@@ -181,31 +195,33 @@ impl<S: Scalar, Sh: Shape> Copy for Factor<S, Sh> {}
 
 impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
     /// Factors in place the matrix whose diagonal is `diag` and whose band is already in
-    /// `low`; rows with `free[i] == false` are skipped. A pivot that rounding left at or below
-    /// zero (`Q16` with tiny masses) is replaced by its row's diagonal.
+    /// `low`, within the envelope in `skip`; rows with `free[i] == false` are skipped. A
+    /// pivot that rounding left at or below zero (`Q16` with tiny masses) is replaced by its
+    /// row's diagonal.
     fn factor(&mut self, diag: &[S], free: impl Fn(usize) -> bool) {
         let zero = S::ZERO;
         let band = Sh::BAND;
         let low = Sh::flat_mut(&mut self.low);
         let inv_d = Sh::flat_mut(&mut self.inv_d);
+        let skip = Sh::flat(&self.skip);
         for i in 0..low.len() {
             if !free(i) {
                 inv_d[i] = zero;
                 continue;
             }
-            let first = i.saturating_sub(band);
+            let first = first_column(i, skip[i], band);
             // `L_ij · D_j` (the sum before the division), in row i's layout.
             let mut scaled = Sh::band(zero);
             let mut row = low[i];
             let mut pivot = diag[i];
             {
                 let (row, scaled) = (Sh::band_mut(&mut row), Sh::band_mut(&mut scaled));
-                let start = first + band - i;
                 for j in first..i {
                     let at = j + band - i;
-                    // `Σ L_im D_m L_jm` over the columns `m` from `first` to `j − 1`.
-                    let earlier = &Sh::band_flat(&low[j])[first + band - j..];
-                    let dot = dot(&scaled[start..at], earlier);
+                    // `Σ L_im D_m L_jm` over the columns `m` both rows reach, up to `j − 1`.
+                    let from = first.max(first_column(j, skip[j], band));
+                    let earlier = &Sh::band_flat(&low[j])[from + band - j..];
+                    let dot = dot(&scaled[from + band - i..at], earlier);
                     let s = row[at] - dot;
                     let l = s * inv_d[j];
                     scaled[at] = s;
@@ -221,14 +237,15 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         }
     }
 
-    /// Solves `LDLᵀ x = r` in place.
+    /// Solves `LDLᵀ x = r` in place, each row over its envelope only.
     fn solve<P: Point<Scalar = S>>(&self, r: &mut [P]) {
         let band = Sh::BAND;
         let low = Sh::flat(&self.low);
         let inv_d = Sh::flat(&self.inv_d);
-        for i in 0..r.len() {
-            let first = i.saturating_sub(band);
-            let row = &Sh::band_flat(&low[i])[first + band - i..];
+        let rows = low.iter().zip(Sh::flat(&self.skip)).enumerate();
+        for (i, (row, &skip)) in rows.clone() {
+            let first = first_column(i, skip, band);
+            let row = &Sh::band_flat(row)[first + band - i..];
             let (before, rest) = r.split_at_mut(i);
             let sum = before[first..]
                 .iter()
@@ -236,12 +253,17 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
                 .fold(rest[0], |sum, (&r, &l)| sum - r * l);
             rest[0] = sum;
         }
+        // A held row (inverse pivot 0) is dropped, whatever was summed into it.
         for (r, &inv) in r.iter_mut().zip(inv_d) {
-            *r = *r * inv;
+            *r = if inv > S::ZERO {
+                *r * inv
+            } else {
+                P::default()
+            };
         }
-        for i in (0..r.len()).rev() {
-            let first = i.saturating_sub(band);
-            let row = &Sh::band_flat(&low[i])[first + band - i..];
+        for (i, (row, &skip)) in rows.rev() {
+            let first = first_column(i, skip, band);
+            let row = &Sh::band_flat(row)[first + band - i..];
             let (before, rest) = r.split_at_mut(i);
             let ri = rest[0];
             for (r, &l) in before[first..].iter_mut().zip(row) {
@@ -251,38 +273,53 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
     }
 }
 
-/// Builds into `factor` the matrix `M + h² Σ k (ea − eb)(ea − eb)ᵀ` of `model`'s springs and
-/// factors it: `mass` the free particles' masses, `weight(k)` a spring's `h² k`. A spring is
-/// in the band when both its ends are free and at most [`Shape::BAND`] apart; any other
-/// spring puts its stiffness on its free ends' diagonals only.
-fn factor_springs<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
-    factor: &mut Factor<P::Scalar, Sh>,
-    model: &Model<'_, P, Sh, T>,
-    mass: &[P::Scalar],
-    free: impl Fn(usize) -> bool,
-    weight: impl Fn(P::Scalar) -> P::Scalar,
-) {
-    let zero = P::Scalar::ZERO;
-    let mut diag = Sh::filled(zero);
-    let (d, low) = (Sh::flat_mut(&mut diag), Sh::flat_mut(&mut factor.low));
-    low.fill(Sh::band(zero));
-    d.copy_from_slice(mass);
-    model.topology.for_each_spring(|a, b, _, m| {
-        if a == b || m.stiffness <= zero {
-            return;
+impl<S: Scalar, Sh: Shape> Factored<S, Sh> {
+    /// Builds the matrix `M + h² Σ k (ea − eb)(ea − eb)ᵀ` of `model`'s springs and factors
+    /// it, `weight(k)` a spring's `h² k`. A spring is in the band when both its ends are free
+    /// and at most [`Shape::BAND`] apart; any other spring puts its stiffness on its free
+    /// ends' diagonals only.
+    fn factor_springs<P: Point<Scalar = S>, T: Topology<S>>(
+        &mut self,
+        model: &Model<'_, P, Sh, T>,
+        weight: impl Fn(S) -> S,
+    ) {
+        let zero = S::ZERO;
+        let w = model.inv_mass();
+        let free = |i: usize| w[i] > zero;
+        let mass = Sh::flat_mut(&mut self.mass);
+        for (m, &w) in mass.iter_mut().zip(w) {
+            *m = if w > zero { S::ONE / w } else { zero };
         }
-        let k = weight(m.stiffness);
-        for end in [a, b] {
-            if free(end) {
-                d[end] += k;
+        let factor = &mut self.factor;
+        let mut diag = self.mass;
+        let (d, low) = (Sh::flat_mut(&mut diag), Sh::flat_mut(&mut factor.low));
+        low.fill(Sh::band(zero));
+        model.topology.for_each_spring(|a, b, _, m| {
+            if a == b || m.stiffness <= zero {
+                return;
             }
+            let k = weight(m.stiffness);
+            for end in [a, b] {
+                if free(end) {
+                    d[end] += k;
+                }
+            }
+            if a.abs_diff(b) <= Sh::BAND && free(a) && free(b) {
+                let (i, j) = (a.max(b), a.min(b));
+                Sh::band_mut(&mut low[i])[j + Sh::BAND - i] -= k;
+            }
+        });
+        // Each row's envelope: its leading zeros (none skipped past `u16`: a longer band only
+        // costs the zeros' products).
+        for (row, skip) in low.iter().zip(Sh::flat_mut(&mut factor.skip)) {
+            let zeros = Sh::band_flat(row)
+                .iter()
+                .take_while(|&&l| l == zero)
+                .count();
+            *skip = u16::try_from(zeros).unwrap_or(0);
         }
-        if a.abs_diff(b) <= Sh::BAND && free(a) && free(b) {
-            let (i, j) = (a.max(b), a.min(b));
-            Sh::band_mut(&mut low[i])[j + Sh::BAND - i] -= k;
-        }
-    });
-    factor.factor(Sh::flat(&diag), free);
+        factor.factor(Sh::flat(&diag), free);
+    }
 }
 
 /// `Σ a_i b_i` over the shorter of the two, four products at a time (the factor's inner
@@ -316,36 +353,9 @@ impl DirectSprings {
         forces: &mut F,
     ) -> bool {
         let zero = P::Scalar::ZERO;
-        let (a, mut ok) = model.accelerations_at(state, forces, false);
-        let prev = state.pos;
         let w = model.inv_mass();
-        let free = |i: usize| w[i] > zero;
-        // The prediction `y`: the free particles moved on by their velocities and the
-        // forces; a held one stays where its hand put it. The first iteration takes the
-        // springs' directions where the velocities alone would carry the particles: at rest
-        // under a steady load those are the directions of the balance, so that even one
-        // iteration keeps it (from `y`, every spring would lean by `h² a`).
-        let mut predicted = state.pos;
-        {
-            let (x, y) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut predicted));
-            let (v, a) = (Sh::flat(&state.vel), Sh::flat(&a));
-            for ((((x, y), &v), &a), &w) in x.iter_mut().zip(y).zip(v).zip(a).zip(w) {
-                if w > zero {
-                    *x += v * h;
-                    *y += (v + a * h) * h;
-                }
-            }
-        }
-        let y = Sh::flat(&predicted);
         // `h² k` as `(k h) h`: in `Q16`, `h²` of a frame is below the format's resolution.
         let weight = |k: P::Scalar| k * h * h;
-        let live = |a: usize, b: usize, k: P::Scalar| a != b && k > zero && (free(a) || free(b));
-        let mut mass = Sh::filled(zero);
-        for (m, &w) in Sh::flat_mut(&mut mass).iter_mut().zip(w) {
-            if w > zero {
-                *m = P::Scalar::ONE / w;
-            }
-        }
         // The key of the matrix: the step's length, every inverse mass and the springs.
         let mut masses = Spread::default();
         for &w in w {
@@ -353,20 +363,54 @@ impl DirectSprings {
         }
         let key = mix(mix(0, h.bits()), masses.sum());
         let key = model.topology.fingerprint(key, mix);
+        if memory.key != Some(key) {
+            memory.factor_springs(model, weight);
+            memory.key = Some(key);
+        }
+        // The prediction `y = x + (v + a h) h`, kept as its gap to the positions so far
+        // (`a h²` at first). The positions start where the velocities alone would carry
+        // the particles: at rest under a steady load those are the directions of the
+        // balance, so that even one iteration keeps it (from `y`, every spring would lean
+        // by `h² a`). A held particle stays where its hand put it.
+        let mut gap = Sh::filled(P::default());
+        let mut ok = model.accelerations(
+            Sh::flat(&state.pos),
+            Sh::flat(&state.vel),
+            forces,
+            Sh::flat_mut(&mut gap),
+            false,
+        );
+        let h2 = h * h;
+        {
+            let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+            for (((x, g), &v), &w) in x.iter_mut().zip(Sh::flat_mut(&mut gap)).zip(v).zip(w) {
+                if w > zero {
+                    *x += v * h;
+                    *g = *g * h2;
+                }
+            }
+        }
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
-        for iteration in 0..self.iterations.max(1) {
+        let iterations = self.iterations.max(1);
+        for iteration in 1..=iterations {
             // Solved for the change of the positions so far: the right-hand side is
-            // `M (y − x)` and each spring's pull at `x` (a held end stays where it is).
-            let first = iteration == 0;
+            // `M (y − x)` and each spring's pull at `x`. A held row's sum is dropped by the
+            // solve (its inverse pivot is 0), so pulls are added to both ends unchecked.
             let mut rhs = Sh::filled(P::default());
             let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
             let r = Sh::flat_mut(&mut rhs);
-            for (((r, &y), &x), &m) in r.iter_mut().zip(y).zip(x).zip(Sh::flat(&mass)) {
-                *r = (y - x) * m;
+            let mass = Sh::flat(&memory.mass);
+            for (((r, &g), &m), &w) in r.iter_mut().zip(Sh::flat(&gap)).zip(mass).zip(w) {
+                if w > zero {
+                    *r = g * m;
+                }
             }
             model.topology.for_each_spring(|a, b, rest, m| {
-                if !live(a, b, m.stiffness) {
+                // A spring between held ends pulls nothing; one from a particle to itself
+                // has no length (below).
+                let wsum = w[a] + w[b];
+                if !(m.stiffness > zero && wsum > zero) {
                     return;
                 }
                 // The spring's pull from the positions so far: stiffness towards its rest
@@ -377,7 +421,6 @@ impl DirectSprings {
                 if l <= tiny_length::<P::Scalar>() {
                     return;
                 }
-                let wsum = w[a] + w[b];
                 let ch = m.damping * h;
                 let c = if ch * wsum > P::Scalar::ONE {
                     h / wsum
@@ -387,32 +430,26 @@ impl DirectSprings {
                 let inv = P::Scalar::ONE / l;
                 let closing = (v[a] - v[b]).dot(d) * inv;
                 let pull = d * ((weight(m.stiffness) * (rest - l) - c * closing) * inv);
-                if free(a) {
-                    r[a] += pull;
-                }
-                if free(b) {
-                    r[b] -= pull;
-                }
+                r[a] += pull;
+                r[b] -= pull;
             });
             if fixed {
-                ok &= r.iter().all(|r| r.is_finite());
-            }
-            if first && memory.key != Some(key) {
-                factor_springs(&mut memory.factor, model, Sh::flat(&mass), free, weight);
-                memory.key = Some(key);
+                ok &= r.iter().zip(w).all(|(r, &w)| w <= zero || r.is_finite());
             }
             memory.factor.solve(r);
-            let x = Sh::flat_mut(&mut state.pos);
-            for (i, (x, &r)) in x.iter_mut().zip(Sh::flat(&rhs)).enumerate() {
-                if free(i) {
-                    *x += r;
+            let last = iteration == iterations;
+            let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
+            let moves = x
+                .iter_mut()
+                .zip(v)
+                .zip(Sh::flat_mut(&mut gap))
+                .zip(r.iter());
+            for (((x, v), g), &r) in moves {
+                *x += r;
+                *v += r * inv_h;
+                if !last {
+                    *g -= r;
                 }
-            }
-        }
-        let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
-        for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
-            if w > zero {
-                *v = (x - p) * inv_h;
             }
         }
         ok
