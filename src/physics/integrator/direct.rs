@@ -170,9 +170,9 @@ fn mix(key: u64, x: u64) -> u64 {
 /// The factor `LDLᵀ` of a banded matrix of band `b` ([`Shape::BAND`]): row `i` of `L` holds
 /// `L[i][j]` at `j + b − i` for the columns `j` from `i − b` to `i − 1` (slots before column
 /// 0 stay 0); `inv_d` the diagonal's inverses (0 for a held particle, whose row is out of
-/// the solve). `skip[i]` counts row `i`'s leading zero slots (its envelope: the factor
-/// fills no slot before its first spring), so the factor and the solves pass over the zeros
-/// of a row whose near neighbours are held or far apart.
+/// the solve). `skip[i]` counts the slots of row `i` before its first spring in the band
+/// (its envelope: the factor fills no slot before it), so the factor and the solves pass
+/// over the zeros of a row whose near neighbours are held or far apart.
 struct Factor<S: Scalar, Sh: Shape> {
     low: Sh::PerParticle<Sh::Band<S>>,
     inv_d: Sh::PerParticle<S>,
@@ -294,6 +294,10 @@ impl<S: Scalar, Sh: Shape> Factored<S, Sh> {
         let mut diag = self.mass;
         let (d, low) = (Sh::flat_mut(&mut diag), Sh::flat_mut(&mut factor.low));
         low.fill(Sh::band(zero));
+        // Each row's envelope, from its first spring in the band (a slot past `u16` skips
+        // nothing: a longer envelope only costs the zeros' products).
+        let skip = Sh::flat_mut(&mut factor.skip);
+        skip.fill(u16::try_from(Sh::BAND).unwrap_or(0));
         model.topology.for_each_spring(|a, b, _, m| {
             if a == b || m.stiffness <= zero {
                 return;
@@ -306,18 +310,11 @@ impl<S: Scalar, Sh: Shape> Factored<S, Sh> {
             }
             if a.abs_diff(b) <= Sh::BAND && free(a) && free(b) {
                 let (i, j) = (a.max(b), a.min(b));
-                Sh::band_mut(&mut low[i])[j + Sh::BAND - i] -= k;
+                let slot = j + Sh::BAND - i;
+                Sh::band_mut(&mut low[i])[slot] -= k;
+                skip[i] = skip[i].min(u16::try_from(slot).unwrap_or(0));
             }
         });
-        // Each row's envelope: its leading zeros (none skipped past `u16`: a longer band only
-        // costs the zeros' products).
-        for (row, skip) in low.iter().zip(Sh::flat_mut(&mut factor.skip)) {
-            let zeros = Sh::band_flat(row)
-                .iter()
-                .take_while(|&&l| l == zero)
-                .count();
-            *skip = u16::try_from(zeros).unwrap_or(0);
-        }
         factor.factor(Sh::flat(&diag), free);
     }
 }
