@@ -153,7 +153,7 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
             let nonzero = |i: &usize| table.weights[k][*i] != zero || table.slopes[k][*i] != zero;
             let mut first = (0..K).find(nonzero).unwrap_or(0);
             let mut end = (0..K).rev().find(nonzero).map_or(first, |i| i + 1);
-            // Four weights where they fit, zeros included: the unrolled path of `apply`.
+            // Four weights where they fit, zeros included: the unrolled path of `sample`.
             if K >= 4 && end - first <= 4 {
                 first = first.min(K - 4);
                 end = first + 4;
@@ -193,9 +193,8 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
     }
 
     /// `(Σ w_i p_i, Σ w'_i p_i, Σ w_i q_i)` of sample `k` over `points` and `others` (the
-    /// last `P::default()` without `others`), on the sample's non-zero weights only: four
-    /// for the splines (unrolled), up to `K` for one Bézier.
-    #[inline(always)]
+    /// last `P::default()` without `others`), on the sample's non-zero weights only: the
+    /// path of a sample without four weights (one Bézier, up to `K`).
     fn apply<P: Point<Scalar = S>>(
         &self,
         k: usize,
@@ -208,32 +207,15 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
             &self.weights[k][span.clone()],
             &self.slopes[k][span.clone()],
         );
-        let (points, others) = (&points[span.clone()], others.map(|q| &q[span]));
-        match (
-            <&[P; 4]>::try_from(points),
-            <&[S; 4]>::try_from(weights),
-            <&[S; 4]>::try_from(slopes),
-        ) {
-            (Ok(p), Ok(w), Ok(s)) => {
-                let at = p[0] * w[0] + p[1] * w[1] + p[2] * w[2] + p[3] * w[3];
-                let slope = p[0] * s[0] + p[1] * s[1] + p[2] * s[2] + p[3] * s[3];
-                let other = others.map_or(P::default(), |q| {
-                    q[0] * w[0] + q[1] * w[1] + q[2] * w[2] + q[3] * w[3]
-                });
-                (at, slope, other)
-            }
-            _ => {
-                let (mut at, mut slope, mut other) = (P::default(), P::default(), P::default());
-                for (i, (&w, &s)) in weights.iter().zip(slopes).enumerate() {
-                    at += points[i] * w;
-                    slope += points[i] * s;
-                    if let Some(q) = others {
-                        other += q[i] * w;
-                    }
-                }
-                (at, slope, other)
+        let (mut at, mut slope, mut other) = (P::default(), P::default(), P::default());
+        for (i, (&w, &s)) in span.zip(weights.iter().zip(slopes)) {
+            at += points[i] * w;
+            slope += points[i] * s;
+            if let Some(q) = others {
+                other += q[i] * w;
             }
         }
+        (at, slope, other)
     }
 }
 
