@@ -124,7 +124,12 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             for (q, d) in self.pulls[e].iter().enumerate() {
                 // Minus the energy's gradient: the stretch pulls the rope together (the
                 // tension, more often within ±½, on the right: in `Q16` the cheaper product).
-                let g = st.slope[e][q] * -(st.inv[e][q] * tension[e][q]);
+                // `T / |x'|` is also how stiffly the point resists turning: capped at `±EA`,
+                // what the substeps were planned for (`ω`), where a fitted tension outgrows
+                // the stretch (`|T| > EA·|x'|`, near a cusp of a rope stretched many times
+                // its length).
+                let per_length = (st.inv[e][q] * tension[e][q]).max(-ea).min(ea);
+                let g = st.slope[e][q] * -per_length;
                 add_pull(&mut pull, d, e, g);
             }
         }
