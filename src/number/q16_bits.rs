@@ -255,28 +255,14 @@ pub(super) fn root_and_inverse(n: u64) -> (u32, u32) {
         root += 1;
     }
     // `1/√n = 2^(shift/2) / √m` and `1/√m ≈ z / 2⁴⁷`: in units of 2⁻³², `z·2^(shift/2 − 15)`.
-    let half = shift / 2;
-    let inverse = if half >= 15 {
-        let up = half - 15;
-        if z >> (31 - up) != 0 {
-            i32::MAX as u32
-        } else {
-            z << up
-        }
-    } else {
-        let down = 15 - half;
-        (z + (1 << (down - 1))) >> down
-    };
-    (root, inverse)
+    (root, scaled_by(z, shift / 2))
 }
 
-/// `2³² / x` for `x > 0` (the raw bits of a `Q16`'s inverse), saturated at `i32::MAX`: the
-/// divisor's top half through [`reciprocal_top`], shifted back. Within 2⁻¹³ relative or one
-/// unit (tested), with no division.
-pub(super) fn reciprocal_bits(x: u32) -> u32 {
-    let shift = 32 - width(x);
-    let z = reciprocal_top((x << shift) >> 16);
-    // `1/x = 2^shift / (x·2^shift)` and `1/(x·2^shift) ≈ z / 2⁴⁷`.
+/// `z·2^(shift − 15)`, rounded half up and saturated at `i32::MAX`: a reciprocal estimate
+/// `z ≤ 2¹⁶` (of a value scaled up by `2^shift`) back at its value's scale, in raw `Q16`
+/// bits.
+#[inline]
+fn scaled_by(z: u32, shift: u32) -> u32 {
     if shift >= 15 {
         let up = shift - 15;
         if up >= 16 || z >> (31 - up) != 0 {
@@ -288,6 +274,16 @@ pub(super) fn reciprocal_bits(x: u32) -> u32 {
         let down = 15 - shift;
         (z + (1 << (down - 1))) >> down
     }
+}
+
+/// `2³² / x` for `x > 0` (the raw bits of a `Q16`'s inverse), saturated at `i32::MAX`: the
+/// divisor's top half through [`reciprocal_top`], shifted back. Within 2⁻¹³ relative or one
+/// unit (tested), with no division.
+pub(super) fn reciprocal_bits(x: u32) -> u32 {
+    let shift = 32 - width(x);
+    let z = reciprocal_top((x << shift) >> 16);
+    // `1/x = 2^shift / (x·2^shift)` and `1/(x·2^shift) ≈ z / 2⁴⁷`.
+    scaled_by(z, shift)
 }
 
 /// `1/√u` at the middle of each eighth of `u ∈ [1, 4)`, in units of 2⁻¹⁶: the first guess of
