@@ -1,15 +1,16 @@
-//! Random sequences of the public calls on a rope and on a spline rope (with each of its
-//! steppers), with hostile values (NaN, ±∞, 0, huge, negative, `usize::MAX`, empty and tiny
-//! buffers), in `f32`, `f64` and `Q16`. After every call: nothing panicked, every position
-//! and velocity is finite and in range, and a call that returned an error left the rope
-//! exactly as it was. And ropes and spline ropes built from random lengths, masses,
-//! stiffnesses, dampings and gravities, stepped at random frame lengths: the same, and the
-//! spline ropes' energy bounded. And the same for what a scene adds: colliders of every
-//! kind touched at the particles or the drawn curve (the reported impulses finite, or
-//! clamped and reported in `Q16`), snap limits, cuts, hung and released weights, hands and
-//! welds; a sail's wind, contacts, tears and drawing (its normals of unit length); every
-//! constructor fed hostile numbers; and curves, smoothed rows, flattening, sample counts and
-//! the fixed-step clock.
+//! Random sequences of the public calls on a rope (stepped explicitly and by the direct
+//! solvers) and on a spline rope (with each of its steppers), with hostile values (NaN, ±∞, 0,
+//! huge, negative, `usize::MAX`, empty and tiny buffers), in `f32`, `f64` and `Q16`. After
+//! every call: nothing panicked, every position and velocity is finite and in range, and a
+//! call that returned an error left the rope exactly as it was. And ropes and spline ropes
+//! built from random lengths, masses, stiffnesses, dampings and gravities, stepped at random
+//! frame lengths: the same, and the spline ropes' energy bounded. And the same for what a
+//! scene adds: colliders of every kind touched at the particles or the drawn curve (the
+//! reported impulses finite, or clamped and reported in `Q16`), snap limits, cuts, hung and
+//! released weights, hands and welds; a sail's wind, contacts, tears and drawing (its normals
+//! of unit length), stepped explicitly and by a direct solve of its springs; every constructor
+//! fed hostile numbers; and curves, smoothed rows, flattening, sample counts and the
+//! fixed-step clock.
 #![cfg(all(feature = "std", feature = "fixed"))]
 
 use dunas::Point;
@@ -18,7 +19,8 @@ use dunas::collider::Collider;
 use dunas::contact::{Contacts, Push, Touch};
 use dunas::force::{AnchorSpring, SailWind, Wind};
 use dunas::integrator::{
-    ExplicitEuler, ImplicitEuler, Integrator, Rk4, SymplecticEuler, Verlet, Xpbd,
+    DirectChain, DirectSprings, ExplicitEuler, ImplicitEuler, Integrator, Rk4, SymplecticEuler,
+    Verlet, Xpbd,
 };
 use dunas::prelude::*;
 use dunas::smooth::Smoothed;
@@ -131,12 +133,20 @@ fn start<S: Scalar>() -> Start<S> {
 }
 
 fn rope<S: Scalar>() -> Rope<Vec2<S>, 8> {
+    stepped_rope(SymplecticEuler)
+}
+
+/// [`rope`] stepped by `integrator`.
+fn stepped_rope<S: Scalar, I: Integrator>(integrator: I) -> Rope<Vec2<S>, 8, 8, I> {
     let (a, b, mass, material, settings) = start::<S>();
-    Rope::new(a, b, mass, material, settings).unwrap()
+    Rope::new(a, b, mass, material, settings.with_integrator(integrator)).unwrap()
 }
 
 /// Makes the call; `Err` when the rope refused it, `Ok` otherwise.
-fn apply<S: Scalar>(rope: &mut Rope<Vec2<S>, 8>, call: &Call) -> Result<(), Error> {
+fn apply<S: Scalar, I: Integrator>(
+    rope: &mut Rope<Vec2<S>, 8, 8, I>,
+    call: &Call,
+) -> Result<(), Error> {
     let s = S::from_f64;
     let v = |x: f64, y: f64| Vec2::new(s(x), s(y));
     match *call {
@@ -196,11 +206,18 @@ fn apply<S: Scalar>(rope: &mut Rope<Vec2<S>, 8>, call: &Call) -> Result<(), Erro
     }
 }
 
+/// The calls on a rope stepped by each method that steps springs in its own way: explicitly,
+/// by a direct solve of its springs, and by a direct solve of its chain.
 fn holds_up<S: Scalar>(calls: &[Call]) {
-    let mut rope = rope::<S>();
-    survives(&mut rope, calls, apply, |r| {
-        (r.positions(), r.velocities(), r.settings().bounds)
-    });
+    fn with<S: Scalar, I: Integrator>(integrator: I, calls: &[Call]) {
+        let mut rope = stepped_rope::<S, I>(integrator);
+        survives(&mut rope, calls, apply, |r| {
+            (r.positions(), r.velocities(), r.settings().bounds)
+        });
+    }
+    with::<S, _>(SymplecticEuler, calls);
+    with::<S, _>(DirectSprings::default(), calls);
+    with::<S, _>(DirectChain::default(), calls);
 }
 
 /// Makes each call on `rope`, then checks what the module promises: a refused call changed
@@ -531,6 +548,9 @@ fn builds_hold_up<S: Scalar>(b: &Build) {
     built_rope_holds_up::<S, _, 8>(Rk4, b);
     built_rope_holds_up::<S, _, 8>(ImplicitEuler::default(), b);
     built_rope_holds_up::<S, _, 8>(Xpbd::default(), b);
+    built_rope_holds_up::<S, _, 8>(DirectSprings::default(), b);
+    built_rope_holds_up::<S, _, 8>(DirectChain::default(), b);
+    built_rope_holds_up::<S, _, 30>(DirectChain::default(), b);
     built_holds_up::<S, _, 4>(SymplecticEuler, b);
     built_holds_up::<S, _, 5>(SymplecticEuler, b);
     built_holds_up::<S, _, 8>(SymplecticEuler, b);
@@ -960,11 +980,14 @@ fn cloth_call() -> impl Strategy<Value = ClothCall> {
     ]
 }
 
-type Sail<S> = Cloth<Vec3<S>, 5, 5>;
+type Sail<S, I> = Cloth<Vec3<S>, 5, 5, I>;
 
 /// Makes the call on the cloth; `Err` when refused. What it draws is finite, and a unit
 /// normal or zero.
-fn apply_cloth<S: Scalar>(cloth: &mut Sail<S>, call: &ClothCall) -> Result<(), Error> {
+fn apply_cloth<S: Scalar, I: Integrator>(
+    cloth: &mut Sail<S, I>,
+    call: &ClothCall,
+) -> Result<(), Error> {
     let s = S::from_f64;
     let v = |[x, y, z]: [f64; 3]| Vec3::new(s(x), s(y), s(z));
     let drawn = |n: usize, len: usize, points: &[Vec3<S>], normals: &[Vec3<S>]| {
@@ -1025,8 +1048,14 @@ fn apply_cloth<S: Scalar>(cloth: &mut Sail<S>, call: &ClothCall) -> Result<(), E
     }
 }
 
-/// A 5×5 sail of 4×4 units, level, in the format's gravity, with one edge on a mast.
+/// A 5×5 sail of 4×4 units, level, in the format's gravity, with one edge on a mast:
+/// stepped explicitly and by a direct solve of its springs.
 fn cloth_holds_up<S: Scalar>(calls: &[ClothCall]) {
+    cloth_with::<S, _>(SymplecticEuler, calls);
+    cloth_with::<S, _>(DirectSprings::default(), calls);
+}
+
+fn cloth_with<S: Scalar, I: Integrator>(integrator: I, calls: &[ClothCall]) {
     let s = S::from_f64;
     let settings = Settings {
         gravity: Vec3::new(s(0.0), s(-9.81), s(0.0)),
@@ -1037,13 +1066,13 @@ fn cloth_holds_up<S: Scalar>(calls: &[ClothCall]) {
         stiffness: s(300.0),
         damping: s(0.5),
     };
-    let mut cloth: Sail<S> = Cloth::rectangle(
+    let mut cloth: Sail<S, I> = Cloth::rectangle(
         Vec3::new(s(-2.0), s(0.0), s(-2.0)),
         Vec3::new(s(4.0), s(0.0), s(0.0)),
         Vec3::new(s(0.0), s(0.0), s(4.0)),
         s(1.0),
         [m, m, m],
-        settings,
+        settings.with_integrator(integrator),
     )
     .unwrap();
     cloth.pin_column(0).unwrap();

@@ -368,44 +368,53 @@ impl DirectSprings {
             memory.key = Some(key);
         }
         // The prediction `y = x + (v + a h) h`, kept as its gap to the positions so far
-        // (`a h²` at first). The positions start where the velocities alone would carry
-        // the particles: at rest under a steady load those are the directions of the
-        // balance, so that even one iteration keeps it (from `y`, every spring would lean
-        // by `h² a`). A held particle stays where its hand put it.
-        let mut gap = Sh::filled(P::default());
+        // (`a h²` at first) in the right-hand side's own array. The positions start where
+        // the velocities alone would carry the particles: at rest under a steady load those
+        // are the directions of the balance, so that even one iteration keeps it (from `y`,
+        // every spring would lean by `h² a`). A held particle stays where its hand put it
+        // (its acceleration is 0).
+        let mut rhs = Sh::filled(P::default());
         let mut ok = model.accelerations(
             Sh::flat(&state.pos),
             Sh::flat(&state.vel),
             forces,
-            Sh::flat_mut(&mut gap),
+            Sh::flat_mut(&mut rhs),
             false,
         );
         let h2 = h * h;
         {
             let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
-            for (((x, g), &v), &w) in x.iter_mut().zip(Sh::flat_mut(&mut gap)).zip(v).zip(w) {
+            for (((x, r), &v), &w) in x.iter_mut().zip(Sh::flat_mut(&mut rhs)).zip(v).zip(w) {
                 if w > zero {
                     *x += v * h;
-                    *g = *g * h2;
+                    *r = *r * h2;
                 }
             }
         }
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
         let iterations = self.iterations.max(1);
+        // A second iteration needs the gap again: a copy, only then.
+        let mut gap = (iterations > 1).then_some(rhs);
+        let mass = Sh::flat(&memory.mass);
         for iteration in 1..=iterations {
             // Solved for the change of the positions so far: the right-hand side is
             // `M (y − x)` and each spring's pull at `x`. A held row's sum is dropped by the
             // solve (its inverse pivot is 0), so pulls are added to both ends unchecked.
-            let mut rhs = Sh::filled(P::default());
-            let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
             let r = Sh::flat_mut(&mut rhs);
-            let mass = Sh::flat(&memory.mass);
-            for (((r, &g), &m), &w) in r.iter_mut().zip(Sh::flat(&gap)).zip(mass).zip(w) {
-                if w > zero {
-                    *r = g * m;
+            match &gap {
+                Some(gap) if iteration > 1 => {
+                    for ((r, &g), &m) in r.iter_mut().zip(Sh::flat(gap)).zip(mass) {
+                        *r = g * m;
+                    }
+                }
+                _ => {
+                    for (r, &m) in r.iter_mut().zip(mass) {
+                        *r = *r * m;
+                    }
                 }
             }
+            let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
             model.topology.for_each_spring(|a, b, rest, m| {
                 // A spring between held ends pulls nothing; one from a particle to itself
                 // has no length (below).
@@ -437,17 +446,13 @@ impl DirectSprings {
                 ok &= r.iter().zip(w).all(|(r, &w)| w <= zero || r.is_finite());
             }
             memory.factor.solve(r);
-            let last = iteration == iterations;
             let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
-            let moves = x
-                .iter_mut()
-                .zip(v)
-                .zip(Sh::flat_mut(&mut gap))
-                .zip(r.iter());
-            for (((x, v), g), &r) in moves {
+            for ((x, v), &r) in x.iter_mut().zip(v).zip(r.iter()) {
                 *x += r;
                 *v += r * inv_h;
-                if !last {
+            }
+            if let Some(gap) = &mut gap {
+                for (g, &r) in Sh::flat_mut(gap).iter_mut().zip(r.iter()) {
                     *g -= r;
                 }
             }
