@@ -560,6 +560,52 @@ fn builds_hold_up<S: Scalar>(b: &Build) {
     built_holds_up::<S, _, 8>(Bdf2::default(), b);
 }
 
+/// The direct solvers with any count of iterations and of solves a step (0 counts as 1),
+/// the chain inextensible or not, on ropes of any build.
+fn direct_builds_hold_up<S: Scalar>(
+    b: &Build,
+    (iterations, substeps, inextensible): (u8, u8, bool),
+) {
+    built_rope_holds_up::<S, _, 8>(
+        DirectSprings {
+            iterations,
+            substeps,
+        },
+        b,
+    );
+    let chain = DirectChain {
+        iterations,
+        inextensible,
+        substeps,
+    };
+    built_rope_holds_up::<S, _, 8>(chain, b);
+}
+
+/// Iterations and solves a step for the direct solvers, and whether the chain is
+/// inextensible.
+fn solves() -> impl Strategy<Value = (u8, u8, bool)> {
+    (0..6u8, 0..4u8, any::<bool>())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    #[test]
+    fn f32_direct_solvers_of_any_build_hold_up(b in build(), solves in solves()) {
+        direct_builds_hold_up::<f32>(&b, solves);
+    }
+
+    #[test]
+    fn f64_direct_solvers_of_any_build_hold_up(b in build(), solves in solves()) {
+        direct_builds_hold_up::<f64>(&b, solves);
+    }
+
+    #[test]
+    fn q16_direct_solvers_of_any_build_hold_up(b in build(), solves in solves()) {
+        direct_builds_hold_up::<Q16>(&b, solves);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
