@@ -92,6 +92,16 @@ impl<S: Scalar, const U: usize, const V: usize> Topology<S> for GridSprings<S, U
             f(a, b, rest, material);
         });
     }
+    /// A family's springs along a row are a run, and a family's that join rows (`di = 0`)
+    /// a run down the whole grid, while none of the grid's springs is torn; a torn spring
+    /// ends its run.
+    fn for_each_run(&self, mut f: impl FnMut(usize, usize, usize, S, Material<S>)) {
+        let families: [(S, Material<S>); 6] = core::array::from_fn(|k| self.family(k));
+        self.torn.each_run(|family, a, b, count| {
+            let (rest, material) = families[family];
+            f(a, b, count, rest, material);
+        });
+    }
     fn spring_count(&self) -> usize {
         Self::COUNT
     }
@@ -286,6 +296,55 @@ impl<const U: usize, const V: usize, const CLOSED: bool> TornBits<U, V, CLOSED> 
         });
     }
 
+    /// Calls `f(family, a, b, count)` for every run of intact springs `(a + k, b + k)`,
+    /// `k < count`, in [`each_intact`](Self::each_intact)'s order. With nothing torn (one
+    /// pass over the bits), an open grid's family is a run a row, or one run when it joins
+    /// rows (`di = 0`); otherwise a torn spring ends its run. A closed grid's springs wrap
+    /// and come one at a time.
+    pub(crate) fn each_run(&self, mut f: impl FnMut(usize, usize, usize, usize)) {
+        let whole = self.0.iter().flatten().fold(0, |all, &bits| all | bits) == 0;
+        if CLOSED {
+            return self.each_intact(|family, _, a, b| f(family, a, b, 1));
+        }
+        for (family, &(di, dj, _)) in FAMILIES.iter().enumerate() {
+            let columns = usize::from(di < 0)..U.saturating_sub(di.max(0) as usize);
+            let rows = V.saturating_sub(dj);
+            let ends = |i: usize, j: usize| {
+                let a = j * U + i;
+                (a, (a + dj * U).wrapping_add_signed(di))
+            };
+            if whole && columns.len() == U {
+                let (a, b) = ends(0, 0);
+                f(family, a, b, rows * U);
+                continue;
+            }
+            for j in 0..rows {
+                if whole {
+                    let (a, b) = ends(columns.start, j);
+                    f(family, a, b, columns.len());
+                    continue;
+                }
+                let mut run: Option<(usize, usize, usize)> = None;
+                for i in columns.clone() {
+                    if self.0[j][i] & (1 << family) == 0 {
+                        match &mut run {
+                            Some((_, _, count)) => *count += 1,
+                            None => {
+                                let (a, b) = ends(i, j);
+                                run = Some((a, b, 1));
+                            }
+                        }
+                    } else if let Some((a, b, count)) = run.take() {
+                        f(family, a, b, count);
+                    }
+                }
+                if let Some((a, b, count)) = run {
+                    f(family, a, b, count);
+                }
+            }
+        }
+    }
+
     /// Whether family `f`'s spring from particle `(i, j)` is torn (`false` for a family,
     /// row or column that does not exist).
     pub(crate) fn is_torn(&self, f: usize, i: usize, j: usize) -> bool {
@@ -394,6 +453,45 @@ mod tests {
         let mut stiffer = grid;
         stiffer.bending.stiffness = 101.0;
         assert_ne!(stiffer.fingerprint(7, mix), base);
+    }
+
+    /// A grid's runs list its intact springs in `for_each_spring`'s order with their rest
+    /// lengths and materials: whole, and with springs torn here and there (a torn spring
+    /// ends its run); a closed grid's runs are its springs one at a time.
+    #[test]
+    fn runs_are_the_intact_springs_in_order() {
+        let materials = [1.0, 2.0, 3.0].map(|stiffness| Material {
+            stiffness,
+            damping: 0.5f64,
+        });
+        fn listed<T: Topology<f64>>(springs: &T) -> [std::vec::Vec<(usize, usize, f64, f64)>; 2] {
+            let mut one = std::vec::Vec::new();
+            springs.for_each_spring(|a, b, rest, m| one.push((a, b, rest, m.stiffness)));
+            let mut runs = std::vec::Vec::new();
+            springs.for_each_run(|a, b, count, rest, m| {
+                assert!(count > 0);
+                runs.extend((0..count).map(|k| (a + k, b + k, rest, m.stiffness)));
+            });
+            [one, runs]
+        }
+        let mut grid = GridSprings::<f64, 5, 4>::new(1.0, 1.5, [1.8, 1.9], materials);
+        let [one, runs] = listed(&grid);
+        assert_eq!(one.len(), GridSprings::<f64, 5, 4>::COUNT);
+        assert_eq!(runs, one);
+        // Tear the springs with a particle on the line x = 1.5 or y = 0.75 between them.
+        let x: [Vec3<f64>; 20] =
+            core::array::from_fn(|k| Vec3::new((k % 5) as f64, (k / 5) as f64 * 1.5, 0.0));
+        let across = grid.tear_across(&x, Vec2::new(1.5, -1.0), Vec2::new(1.6, 9.0));
+        let along = grid.tear_across(&x, Vec2::new(-1.0, 0.75), Vec2::new(0.5, 0.8));
+        assert!(across > 0 && along > 0);
+        let [one, runs] = listed(&grid);
+        assert_eq!(one.len(), GridSprings::<f64, 5, 4>::COUNT - across - along);
+        assert_eq!(runs, one);
+        let closed: [[Vec3<f64>; 5]; 5] =
+            core::array::from_fn(|j| core::array::from_fn(|i| Vec3::new(i as f64, j as f64, 0.0)));
+        let torus = TorusSprings::<f64, 5, 5>::measured(&closed, materials).unwrap();
+        let [one, runs] = listed(&torus);
+        assert_eq!(runs, one);
     }
 
     /// A closed grid lists `6·U·V` springs, twelve at every particle, each pair once, with

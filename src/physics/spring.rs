@@ -119,6 +119,14 @@ pub trait Topology<S: Scalar> {
     /// Calls `f(a, b, rest, material)` once per spring, with `a`, `b` flat particle indices
     /// that were checked against the particle count when the topology was built.
     fn for_each_spring(&self, f: impl FnMut(usize, usize, S, Material<S>));
+    /// Calls `f(a, b, count, rest, material)` for runs of springs in
+    /// [`for_each_spring`](Self::for_each_spring)'s order: the springs from `a + k` to
+    /// `b + k` for `k < count`, all of one rest length and material, so that a solver takes
+    /// a run's numbers once and steps through its ends. By default every spring is a run
+    /// of one; a grid's intact springs of a family come in runs of a row or more.
+    fn for_each_run(&self, mut f: impl FnMut(usize, usize, usize, S, Material<S>)) {
+        self.for_each_spring(|a, b, rest, material| f(a, b, 1, rest, material));
+    }
     /// The number of springs.
     fn spring_count(&self) -> usize;
     /// Breaks every spring that has passed its [`Snap`] length at positions `x` (indexed as

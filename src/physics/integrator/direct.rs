@@ -6,6 +6,7 @@ use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Spread, Topology};
 use crate::{Point, Scalar};
+use core::cell::Cell;
 
 /// The springs of a rope or a cloth solved together by a direct, banded solve: stable at
 /// any stiffness with one solve a frame. Made for cloth held along its edges (a sail, a
@@ -245,12 +246,15 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         let band = Sh::BAND;
         let low = Sh::flat(&self.low);
         let inv_d = Sh::flat(&self.inv_d);
+        // Row `i`'s entries: the `count` columns before `i` (a held row has none).
         let rows = low.iter().zip(Sh::flat(&self.skip)).enumerate();
-        for (i, (row, &skip)) in rows.clone() {
-            let first = first_column(i, skip, band);
-            let row = &Sh::band_flat(row)[first + band - i..];
+        let rows = rows.map(|(i, (row, &skip))| {
+            let count = band.saturating_sub(usize::from(skip)).min(i);
+            (i, &Sh::band_flat(row)[band - count..], count)
+        });
+        for (i, row, count) in rows.clone() {
             let (before, rest) = r.split_at_mut(i);
-            let sum = before[first..]
+            let sum = before[i - count..]
                 .iter()
                 .zip(row)
                 .fold(rest[0], |sum, (&r, &l)| sum - r * l);
@@ -264,12 +268,10 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
                 P::default()
             };
         }
-        for (i, (row, &skip)) in rows.rev() {
-            let first = first_column(i, skip, band);
-            let row = &Sh::band_flat(row)[first + band - i..];
+        for (i, row, count) in rows.rev() {
             let (before, rest) = r.split_at_mut(i);
             let ri = rest[0];
-            for (r, &l) in before[first..].iter_mut().zip(row) {
+            for (r, &l) in before[i - count..].iter_mut().zip(row) {
                 *r -= ri * l;
             }
         }
@@ -368,11 +370,11 @@ impl DirectSprings {
             memory.key = Some(key);
         }
         // The prediction `y = x + (v + a h) h`, kept as its gap to the positions so far
-        // (`a h²` at first) in the right-hand side's own array. The positions start where
-        // the velocities alone would carry the particles: at rest under a steady load those
-        // are the directions of the balance, so that even one iteration keeps it (from `y`,
-        // every spring would lean by `h² a`). A held particle stays where its hand put it
-        // (its acceleration is 0).
+        // times the masses (`M a h²` at first), in the right-hand side's own array. The
+        // positions start where the velocities alone would carry the particles: at rest
+        // under a steady load those are the directions of the balance, so that even one
+        // iteration keeps it (from `y`, every spring would lean by `h² a`). A held particle
+        // stays where its hand put it (its acceleration and its mass here are 0).
         let mut rhs = Sh::filled(P::default());
         let mut ok = model.accelerations(
             Sh::flat(&state.pos),
@@ -382,65 +384,76 @@ impl DirectSprings {
             false,
         );
         let h2 = h * h;
+        let mass = Sh::flat(&memory.mass);
         {
             let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
-            for (((x, r), &v), &w) in x.iter_mut().zip(Sh::flat_mut(&mut rhs)).zip(v).zip(w) {
-                if w > zero {
+            let particles = x
+                .iter_mut()
+                .zip(Sh::flat_mut(&mut rhs))
+                .zip(v.iter().zip(mass));
+            for ((x, r), (&v, &m)) in particles {
+                if m > zero {
                     *x += v * h;
-                    *r = *r * h2;
+                    *r = *r * h2 * m;
                 }
             }
         }
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
         let iterations = self.iterations.max(1);
-        // A second iteration needs the gap again: a copy, only then.
+        // A second iteration starts from the gap again: a copy, only then.
         let mut gap = (iterations > 1).then_some(rhs);
-        let mass = Sh::flat(&memory.mass);
         for iteration in 1..=iterations {
             // Solved for the change of the positions so far: the right-hand side is
             // `M (y − x)` and each spring's pull at `x`. A held row's sum is dropped by the
             // solve (its inverse pivot is 0), so pulls are added to both ends unchecked.
-            let r = Sh::flat_mut(&mut rhs);
-            match &gap {
-                Some(gap) if iteration > 1 => {
-                    for ((r, &g), &m) in r.iter_mut().zip(Sh::flat(gap)).zip(mass) {
-                        *r = g * m;
-                    }
-                }
-                _ => {
-                    for (r, &m) in r.iter_mut().zip(mass) {
-                        *r = *r * m;
-                    }
-                }
+            if let (Some(gap), true) = (&gap, iteration > 1) {
+                rhs = *gap;
             }
+            let r = Sh::flat_mut(&mut rhs);
             let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
-            model.topology.for_each_spring(|a, b, rest, m| {
-                // A spring between held ends pulls nothing; one from a particle to itself
-                // has no length (below).
-                let wsum = w[a] + w[b];
-                if !(m.stiffness > zero && wsum > zero) {
+            // The sums as cells: a run's two ends may step through the same particles.
+            let sums = Cell::from_mut(&mut *r).as_slice_of_cells();
+            let n = x.len().min(v.len()).min(w.len()).min(sums.len());
+            model.topology.for_each_run(|a, b, count, rest, m| {
+                if !(m.stiffness > zero && a.max(b).saturating_add(count) <= n) {
                     return;
                 }
-                // The spring's pull from the positions so far: stiffness towards its rest
-                // length, and its damping as an explicit force along it, at most what stops
-                // its ends' closing speed in one solve (`h² c` up to `h / (wa + wb)`).
-                let d = x[a] - x[b];
-                let l = d.length();
-                if l <= tiny_length::<P::Scalar>() {
-                    return;
+                let (from_a, from_b) = (a..a + count, b..b + count);
+                let (xa, xb) = (&x[from_a.clone()], &x[from_b.clone()]);
+                let (va, vb) = (&v[from_a.clone()], &v[from_b.clone()]);
+                let (wa, wb) = (&w[from_a.clone()], &w[from_b.clone()]);
+                let (ra, rb) = (&sums[from_a], &sums[from_b]);
+                let (k, ch) = (weight(m.stiffness), m.damping * h);
+                let ends = xa.iter().zip(xb).zip(va.iter().zip(vb));
+                let weights = wa.iter().zip(wb).zip(ra.iter().zip(rb));
+                for (((&xa, &xb), (&va, &vb)), ((&wa, &wb), (ra, rb))) in ends.zip(weights) {
+                    // A spring between held ends pulls nothing; one from a particle to
+                    // itself has no length (below).
+                    let wsum = wa + wb;
+                    if wsum <= zero {
+                        continue;
+                    }
+                    // The spring's pull from the positions so far: stiffness towards its
+                    // rest length, and its damping as an explicit force along it, at most
+                    // what stops its ends' closing speed in one solve (`h² c` up to
+                    // `h / (wa + wb)`).
+                    let d = xa - xb;
+                    let l = d.length();
+                    if l <= tiny_length::<P::Scalar>() {
+                        continue;
+                    }
+                    let c = if ch * wsum > P::Scalar::ONE {
+                        h / wsum
+                    } else {
+                        ch * h
+                    };
+                    let inv = P::Scalar::ONE / l;
+                    let closing = (va - vb).dot(d) * inv;
+                    let pull = d * ((k * (rest - l) - c * closing) * inv);
+                    ra.set(ra.get() + pull);
+                    rb.set(rb.get() - pull);
                 }
-                let ch = m.damping * h;
-                let c = if ch * wsum > P::Scalar::ONE {
-                    h / wsum
-                } else {
-                    ch * h
-                };
-                let inv = P::Scalar::ONE / l;
-                let closing = (v[a] - v[b]).dot(d) * inv;
-                let pull = d * ((weight(m.stiffness) * (rest - l) - c * closing) * inv);
-                r[a] += pull;
-                r[b] -= pull;
             });
             if fixed {
                 ok &= r.iter().zip(w).all(|(r, &w)| w <= zero || r.is_finite());
@@ -452,8 +465,8 @@ impl DirectSprings {
                 *v += r * inv_h;
             }
             if let Some(gap) = &mut gap {
-                for (g, &r) in Sh::flat_mut(gap).iter_mut().zip(r.iter()) {
-                    *g -= r;
+                for ((g, &r), &m) in Sh::flat_mut(gap).iter_mut().zip(r.iter()).zip(mass) {
+                    *g -= r * m;
                 }
             }
         }
