@@ -246,11 +246,12 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         let band = Sh::BAND;
         let low = Sh::flat(&self.low);
         let inv_d = Sh::flat(&self.inv_d);
-        // Row `i`'s entries: the `count` columns before `i` (a held row has none).
+        // Row `i`'s entries: the `count` columns before `i`, for the rows that have any (a
+        // held row has none).
         let rows = low.iter().zip(Sh::flat(&self.skip)).enumerate();
-        let rows = rows.map(|(i, (row, &skip))| {
+        let rows = rows.filter_map(|(i, (row, &skip))| {
             let count = band.saturating_sub(usize::from(skip)).min(i);
-            (i, &Sh::band_flat(row)[band - count..], count)
+            (count > 0).then(|| (i, &Sh::band_flat(row)[band - count..], count))
         });
         for (i, row, count) in rows.clone() {
             let (before, rest) = r.split_at_mut(i);
