@@ -55,9 +55,11 @@ use core::cell::Cell;
 /// when something changed, of about `n·b²/2` multiply-adds; per iteration a square root and a
 /// division a spring and `2·e` vector multiply-adds, `e ≤ n·b` the entries of the rows'
 /// envelopes (each row from its first spring in the band: a held particle's row is empty).
-/// The same at every stiffness. On a Cortex-M4F the 8×8 sail (band 16, 22 particles held,
-/// 521 entries) takes about 76 000 instructions a step, 60 000 of them the iteration, and
-/// 86 000 more for a new factor (`examples/mcu_sail.rs`). Memory: the factor, the masses
+/// The same at every stiffness. A topology that lists its springs in runs
+/// ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers taken once. On a
+/// Cortex-M4F the 8×8 sail (band 16, 22 particles held, 521 entries) takes about 65 000
+/// instructions a step, 49 000 of them the iteration, and 86 000 more for a new factor
+/// (`examples/mcu_sail.rs`). Memory: the factor, the masses
 /// and the envelopes, `n·(b + 2)` scalars and `n` 16-bit counts in the system (4.7 KB for
 /// the 8×8 sail in `f32`), and about `n·7` scalars of stack in 3D.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
