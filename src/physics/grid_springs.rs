@@ -302,10 +302,10 @@ impl<const U: usize, const V: usize, const CLOSED: bool> TornBits<U, V, CLOSED> 
     /// rows (`di = 0`); otherwise a torn spring ends its run. A closed grid's springs wrap
     /// and come one at a time.
     pub(crate) fn each_run(&self, mut f: impl FnMut(usize, usize, usize, usize)) {
-        let whole = self.0.iter().flatten().fold(0, |all, &bits| all | bits) == 0;
         if CLOSED {
             return self.each_intact(|family, _, a, b| f(family, a, b, 1));
         }
+        let whole = self.0.iter().flatten().fold(0, |all, &bits| all | bits) == 0;
         for (family, &(di, dj, _)) in FAMILIES.iter().enumerate() {
             let columns = usize::from(di < 0)..U.saturating_sub(di.max(0) as usize);
             let rows = V.saturating_sub(dj);

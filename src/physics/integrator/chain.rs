@@ -18,11 +18,11 @@ use crate::{Point, Scalar};
 /// algorithm: one inverse a link) and takes the step, or half of it and so on while that
 /// would not lower the links' squared stretch (a line search: far from the solution, as in
 /// a whip, a full step overshoots). The last of two or more iterations starts near the
-/// solution and is taken whole, unmeasured. With `inextensible` the compliance is 0 and every link
-/// holds its rest length; otherwise the links keep their springs' stiffness `k`, as backward
-/// Euler would, with no stability limit. Other springs (a hub, bending springs, a cloth's
-/// shear) are projected once an iteration as [`Xpbd`](super::Xpbd) does. A held particle
-/// moves with its hand through the solves. Velocities are each solve's displacement over
+/// solution and is taken whole, unmeasured. With `inextensible` the compliance is 0 and
+/// every link holds its rest length; otherwise the links keep their springs' stiffness `k`,
+/// as backward Euler would, with no stability limit. Other springs (a hub, bending springs,
+/// a cloth's shear) are projected once an iteration as [`Xpbd`](super::Xpbd) does. A held
+/// particle moves with its hand through the solves. Velocities are each solve's displacement over
 /// its length. Contacts are resolved after each solve, not inside it: a collider much
 /// thinner than the particle spacing can be pulled through by the links (a peg of a tenth of
 /// the spacing is; one of a third holds the rope, `direct_chain_rests_on_a_peg`); for thin

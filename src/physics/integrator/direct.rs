@@ -58,7 +58,7 @@ use core::cell::Cell;
 /// The same at every stiffness. A topology that lists its springs in runs
 /// ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers taken once. On a
 /// Cortex-M4F the 8×8 sail (band 16, 22 particles held, 521 entries) takes about 65 000
-/// instructions a step, 49 000 of them the iteration, and 86 000 more for a new factor
+/// instructions a step, 49 000 of them the iteration, and 84 000 more for a new factor
 /// (`examples/mcu_sail.rs`). Memory: the factor, the masses
 /// and the envelopes, `n·(b + 2)` scalars and `n` 16-bit counts in the system (4.7 KB for
 /// the 8×8 sail in `f32`), and about `n·7` scalars of stack in 3D.
@@ -185,10 +185,11 @@ struct Factor<S: Scalar, Sh: Shape> {
     skip: Sh::PerParticle<u16>,
 }
 
-/// The first column of row `i` inside its envelope (`i` for a row of zeros).
+/// How many columns before `i` row `i`'s envelope holds, `skip` its slots skipped (0 for a
+/// row of zeros): the envelope starts at column `i` less this.
 #[inline]
-fn first_column(i: usize, skip: u16, band: usize) -> usize {
-    (i + usize::from(skip)).saturating_sub(band).min(i)
+fn entries(i: usize, skip: u16, band: usize) -> usize {
+    band.saturating_sub(usize::from(skip)).min(i)
 }
 
 impl<S: Scalar, Sh: Shape> Clone for Factor<S, Sh> {
@@ -215,7 +216,7 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
                 inv_d[i] = zero;
                 continue;
             }
-            let first = first_column(i, skip[i], band);
+            let first = i - entries(i, skip[i], band);
             // `L_ij · D_j` (the sum before the division), in row i's layout.
             let mut scaled = Sh::band(zero);
             let mut row = low[i];
@@ -225,7 +226,7 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
                 for j in first..i {
                     let at = j + band - i;
                     // `Σ L_im D_m L_jm` over the columns `m` both rows reach, up to `j − 1`.
-                    let from = first.max(first_column(j, skip[j], band));
+                    let from = first.max(j - entries(j, skip[j], band));
                     let earlier = &Sh::band_flat(&low[j])[from + band - j..];
                     let dot = dot(&scaled[from + band - i..at], earlier);
                     let s = row[at] - dot;
@@ -252,7 +253,7 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         // held row has none).
         let rows = low.iter().zip(Sh::flat(&self.skip)).enumerate();
         let rows = rows.filter_map(|(i, (row, &skip))| {
-            let count = band.saturating_sub(usize::from(skip)).min(i);
+            let count = entries(i, skip, band);
             (count > 0).then(|| (i, &Sh::band_flat(row)[band - count..], count))
         });
         for (i, row, count) in rows.clone() {
