@@ -340,6 +340,7 @@ pub(crate) fn natural_grid<P: Point, const U: usize, const V: usize>(grid: &mut 
 }
 
 /// [`natural_grid`] with rows (`closed_u`) or columns (`closed_v`) that close on themselves.
+#[inline(never)]
 pub(crate) fn natural_net<P: Point, const U: usize, const V: usize>(
     grid: &mut [[P; U]; V],
     closed_u: bool,

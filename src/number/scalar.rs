@@ -136,6 +136,18 @@ pub trait Scalar:
     }
     /// A small integer as a scalar (exact for `|i| <= 16383` in every format).
     fn from_i16(i: i16) -> Self;
+    /// `self`, or 0 when `|self| < tiny` (`tiny ≥ 0`): the flush of values that decay
+    /// towards a float's subnormals. Floats compare their bits, in integer steps.
+    #[inline]
+    fn flush_tiny(self, tiny: Self) -> Self {
+        if self.abs() < tiny { Self::ZERO } else { self }
+    }
+    /// `|self| ≤ limit`, `false` for NaN (`limit` finite and `≥ 0`). Floats compare their
+    /// bits, in integer steps: a subtraction whose sign says it.
+    #[inline]
+    fn within(self, limit: Self) -> bool {
+        self.abs() <= limit
+    }
     /// `true` when the value is finite and `|self| <= SAFE_RANGE`.
     #[inline]
     fn in_safe_range(self) -> bool {
@@ -210,6 +222,18 @@ macro_rules! impl_float {
             #[inline]
             fn from_i16(i: i16) -> Self {
                 i as $t
+            }
+            // A float's magnitude is its bits without the sign: ordered as the values, NaN
+            // above infinity.
+            #[inline]
+            fn flush_tiny(self, tiny: Self) -> Self {
+                let sign = (-0.0 as $t).to_bits();
+                if self.to_bits() & !sign < tiny.to_bits() { 0.0 } else { self }
+            }
+            #[inline]
+            fn within(self, limit: Self) -> bool {
+                let sign = (-0.0 as $t).to_bits();
+                limit.to_bits().wrapping_sub(self.to_bits() & !sign) & sign == 0
             }
             #[inline]
             fn floor_i32(self) -> i32 {

@@ -281,7 +281,10 @@ impl<S: Scalar> ForceField<Vec3<S>> for SailWind<S> {
         self.air.apply(t, bodies, out);
         let wind = self.air.at(t);
         let (pos, vel) = (bodies.pos, bodies.vel);
-        let (half, quarter) = (S::ratio(1, 2), S::ratio(1, 4));
+        let quarter = S::ratio(1, 4);
+        // A corner's share, `pressure · (w·n)·|w·n| · A / 4`, from the diagonals' cross
+        // product, twice `A`: an eighth of the pressure.
+        let share = self.pressure * S::ratio(1, 8);
         let u = bodies.columns;
         let rows = pos.len().min(vel.len()).checked_div(u).unwrap_or(0);
         for j in 0..rows.saturating_sub(1) {
@@ -293,14 +296,14 @@ impl<S: Scalar> ForceField<Vec3<S>> for SailWind<S> {
                     (j + 1) * u + i + 1,
                 ];
                 let [a, b, c, d] = corners;
-                let area = (pos[d] - pos[a]).cross(pos[c] - pos[b]) * half;
-                let size = area.length();
+                let twice_area = (pos[d] - pos[a]).cross(pos[c] - pos[b]);
+                let size = twice_area.length();
                 if size <= S::ZERO {
                     continue;
                 }
                 let mean = (vel[a] + vel[b] + vel[c] + vel[d]) * quarter;
-                let normal_speed = (wind - mean).dot(area) / size;
-                let f = area * (self.pressure * normal_speed * normal_speed.abs() * quarter);
+                let normal_speed = (wind - mean).dot(twice_area) / size;
+                let f = twice_area * (share * normal_speed * normal_speed.abs());
                 for k in corners {
                     out.add_force(k, f);
                 }

@@ -91,13 +91,10 @@ fn flush_tiny<P: Point>(v: &mut P, limit: P::Scalar) -> bool {
     let mut ok = true;
     for d in 0..P::DIM {
         let c = v.coord(d);
-        let a = c.abs();
         if !P::Scalar::FIXED_POINT {
-            // A select, not a branch: the loop stays branch-free.
-            v.set_coord(d, if a < tiny { P::Scalar::ZERO } else { c });
+            v.set_coord(d, c.flush_tiny(tiny));
         }
-        // A NaN fails the comparison, and `limit` is finite: no separate finiteness test.
-        ok &= a <= limit;
+        ok &= c.within(limit);
     }
     ok
 }
@@ -628,18 +625,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if !unsaturated {
             self.calm();
         }
-        if self.flush_and_check() {
-            // A held particle ends the step where its hand put it; the hand's velocity
-            // (`move_pinned`) lasted this step, for the springs' damping.
-            for ((x, v), (&w, &before)) in Sh::flat_mut(&mut self.state.pos)
-                .iter_mut()
-                .zip(Sh::flat_mut(&mut self.state.vel))
-                .zip(Sh::flat(&self.inv_mass).iter().zip(Sh::flat(&saved.0.pos)))
-            {
-                if w <= P::Scalar::ZERO {
-                    (*x, *v) = (before, P::default());
-                }
-            }
+        if self.settle(Sh::flat(&saved.0.pos)) {
             Ok(!unsaturated)
         } else {
             (self.state, self.time) = saved;
@@ -660,18 +646,24 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         }
     }
 
-    /// Flushes tiny coordinates to 0 (see [`flush_tiny`]) and checks that every position is
-    /// finite and inside `±bounds` and every velocity inside the safe range. One pass, no
-    /// early exit, so it stays cheap next to the step itself.
-    fn flush_and_check(&mut self) -> bool {
-        let limits = [
-            (Sh::flat_mut(&mut self.state.pos), self.settings.bounds),
-            (Sh::flat_mut(&mut self.state.vel), P::Scalar::SAFE_RANGE),
-        ];
+    /// Ends a step, in one pass with no early exit: a held particle where its hand put it
+    /// (`held`, the positions at the step's start) and at rest (the hand's velocity,
+    /// [`move_pinned`](Self::move_pinned), lasted this step, for the springs' damping); a free
+    /// one's coordinates flushed (see [`flush_tiny`]) and checked: its position finite and
+    /// inside `±bounds`, its velocity inside the safe range. `false` when a check failed.
+    #[inline(never)]
+    fn settle(&mut self, held: &[P]) -> bool {
+        let (bounds, zero) = (self.settings.bounds, P::Scalar::ZERO);
+        let particles = Sh::flat_mut(&mut self.state.pos)
+            .iter_mut()
+            .zip(Sh::flat_mut(&mut self.state.vel))
+            .zip(Sh::flat(&self.inv_mass).iter().zip(held));
         let mut ok = true;
-        for (points, limit) in limits {
-            for p in points.iter_mut() {
-                ok &= flush_tiny(p, limit);
+        for ((x, v), (&w, &before)) in particles {
+            if w > zero {
+                ok &= flush_tiny(x, bounds) & flush_tiny(v, P::Scalar::SAFE_RANGE);
+            } else {
+                (*x, *v) = (before, P::default());
             }
         }
         ok

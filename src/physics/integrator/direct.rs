@@ -1,6 +1,7 @@
 //! Every spring of a rope or a cloth solved together: one banded factorisation a solve and a
 //! back-substitution an iteration, whatever the stiffness (projective dynamics).
 
+use super::banded::Factor;
 use super::{Integrator, Model, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
@@ -90,11 +91,7 @@ impl Integrator for DirectSprings {
         Factored {
             key: None,
             mass: Sh::filled(S::ZERO),
-            factor: Factor {
-                low: Sh::filled(Sh::band(S::ZERO)),
-                inv_d: Sh::filled(S::ZERO),
-                skip: Sh::filled(0),
-            },
+            factor: Factor::default(),
         }
     }
 
@@ -173,120 +170,9 @@ fn mix(key: u64, x: u64) -> u64 {
     (u64::from(b) << 32) | u64::from(a)
 }
 
-/// The factor `LDLᵀ` of a banded matrix of band `b` ([`Shape::BAND`]): row `i` of `L` holds
-/// `L[i][j]` at `j + b − i` for the columns `j` from `i − b` to `i − 1` (slots before column
-/// 0 stay 0); `inv_d` the diagonal's inverses (0 for a held particle, whose row is out of
-/// the solve). `skip[i]` counts the slots of row `i` before its first spring in the band
-/// (its envelope: the factor fills no slot before it), so the factor and the solves pass
-/// over the zeros of a row whose near neighbours are held or far apart.
-struct Factor<S: Scalar, Sh: Shape> {
-    low: Sh::PerParticle<Sh::Band<S>>,
-    inv_d: Sh::PerParticle<S>,
-    skip: Sh::PerParticle<u16>,
-}
-
-/// How many columns before `i` row `i`'s envelope holds, `skip` its slots skipped (0 for a
-/// row of zeros): the envelope starts at column `i` less this.
-#[inline]
-fn entries(i: usize, skip: u16, band: usize) -> usize {
-    band.saturating_sub(usize::from(skip)).min(i)
-}
-
-impl<S: Scalar, Sh: Shape> Clone for Factor<S, Sh> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<S: Scalar, Sh: Shape> Copy for Factor<S, Sh> {}
-
-impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
-    /// Factors in place the matrix whose diagonal is `diag` and whose band is already in
-    /// `low`, within the envelope in `skip`; rows with `free[i] == false` are skipped. A
-    /// pivot that rounding left at or below zero (`Q16` with tiny masses) is replaced by its
-    /// row's diagonal.
-    fn factor(&mut self, diag: &[S], free: impl Fn(usize) -> bool) {
-        let zero = S::ZERO;
-        let band = Sh::BAND;
-        let low = Sh::flat_mut(&mut self.low);
-        let inv_d = Sh::flat_mut(&mut self.inv_d);
-        let skip = Sh::flat(&self.skip);
-        for i in 0..low.len() {
-            if !free(i) {
-                inv_d[i] = zero;
-                continue;
-            }
-            let first = i - entries(i, skip[i], band);
-            // `L_ij · D_j` (the sum before the division), in row i's layout.
-            let mut scaled = Sh::band(zero);
-            let mut row = low[i];
-            let mut pivot = diag[i];
-            {
-                let (row, scaled) = (Sh::band_mut(&mut row), Sh::band_mut(&mut scaled));
-                for j in first..i {
-                    let at = j + band - i;
-                    // `Σ L_im D_m L_jm` over the columns `m` both rows reach, up to `j − 1`.
-                    let from = first.max(j - entries(j, skip[j], band));
-                    let earlier = &Sh::band_flat(&low[j])[from + band - j..];
-                    let dot = dot(&scaled[from + band - i..at], earlier);
-                    let s = row[at] - dot;
-                    let l = s * inv_d[j];
-                    scaled[at] = s;
-                    row[at] = l;
-                    pivot -= l * s;
-                }
-            }
-            low[i] = row;
-            if pivot <= zero {
-                pivot = diag[i];
-            }
-            inv_d[i] = if pivot > zero { S::ONE / pivot } else { zero };
-        }
-    }
-
-    /// Solves `LDLᵀ x = r` in place, each row over its envelope only.
-    fn solve<P: Point<Scalar = S>>(&self, r: &mut [P]) {
-        let band = Sh::BAND;
-        let low = Sh::flat(&self.low);
-        let inv_d = Sh::flat(&self.inv_d);
-        // Row `i`'s entries: the `count` columns before `i`, for the rows that have any (a
-        // held row has none).
-        let rows = low.iter().zip(Sh::flat(&self.skip)).enumerate();
-        let rows = rows.filter_map(|(i, (row, &skip))| {
-            let count = entries(i, skip, band);
-            (count > 0).then(|| (i, &Sh::band_flat(row)[band - count..], count))
-        });
-        for (i, row, count) in rows.clone() {
-            let (before, rest) = r.split_at_mut(i);
-            let sum = before[i - count..]
-                .iter()
-                .zip(row)
-                .fold(rest[0], |sum, (&r, &l)| sum - r * l);
-            rest[0] = sum;
-        }
-        // A held row (inverse pivot 0) is dropped, whatever was summed into it.
-        for (r, &inv) in r.iter_mut().zip(inv_d) {
-            *r = if inv > S::ZERO {
-                *r * inv
-            } else {
-                P::default()
-            };
-        }
-        for (i, row, count) in rows.rev() {
-            let (before, rest) = r.split_at_mut(i);
-            let ri = rest[0];
-            for (r, &l) in before[i - count..].iter_mut().zip(row) {
-                *r -= ri * l;
-            }
-        }
-    }
-}
-
 impl<S: Scalar, Sh: Shape> Factored<S, Sh> {
     /// Builds the matrix `M + h² Σ k (ea − eb)(ea − eb)ᵀ` of `model`'s springs and factors
-    /// it, `weight(k)` a spring's `h² k`. A spring is in the band when both its ends are free
-    /// and at most [`Shape::BAND`] apart; any other spring puts its stiffness on its free
-    /// ends' diagonals only.
+    /// it ([`Factor::build`]), `weight(k)` a spring's `h² k`.
     fn factor_springs<P: Point<Scalar = S>, T: Topology<S>>(
         &mut self,
         model: &Model<'_, P, Sh, T>,
@@ -294,59 +180,20 @@ impl<S: Scalar, Sh: Shape> Factored<S, Sh> {
     ) {
         let zero = S::ZERO;
         let w = model.inv_mass();
-        let free = |i: usize| w[i] > zero;
         let mass = Sh::flat_mut(&mut self.mass);
         for (m, &w) in mass.iter_mut().zip(w) {
             *m = if w > zero { S::ONE / w } else { zero };
         }
-        let factor = &mut self.factor;
-        let mut diag = self.mass;
-        let (d, low) = (Sh::flat_mut(&mut diag), Sh::flat_mut(&mut factor.low));
-        low.fill(Sh::band(zero));
-        // Each row's envelope, from its first spring in the band (a slot past `u16` skips
-        // nothing: a longer envelope only costs the zeros' products).
-        let skip = Sh::flat_mut(&mut factor.skip);
-        skip.fill(u16::try_from(Sh::BAND).unwrap_or(0));
-        model.topology.for_each_spring(|a, b, _, m| {
-            if a == b || m.stiffness <= zero {
-                return;
-            }
-            let k = weight(m.stiffness);
-            for end in [a, b] {
-                if free(end) {
-                    d[end] += k;
+        let springs = |add: &mut dyn FnMut(usize, usize, S)| {
+            model.topology.for_each_spring(|a, b, _, m| {
+                if a != b && m.stiffness > zero {
+                    add(a, b, weight(m.stiffness));
                 }
-            }
-            if a.abs_diff(b) <= Sh::BAND && free(a) && free(b) {
-                let (i, j) = (a.max(b), a.min(b));
-                let slot = j + Sh::BAND - i;
-                Sh::band_mut(&mut low[i])[slot] -= k;
-                skip[i] = skip[i].min(u16::try_from(slot).unwrap_or(0));
-            }
-        });
-        factor.factor(Sh::flat(&diag), free);
+            });
+        };
+        self.factor
+            .build(|i| w[i] > zero, Sh::flat(&self.mass), springs);
     }
-}
-
-/// `Σ a_i b_i` over the shorter of the two, four products at a time (the factor's inner
-/// loop: about half its cost is loop overhead when summed one at a time).
-#[inline]
-fn dot<S: Scalar>(a: &[S], b: &[S]) -> S {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
-    let (mut sums, mut chunks_b) = ([S::ZERO; 4], b.chunks_exact(4));
-    let mut chunks_a = a.chunks_exact(4);
-    for (a, b) in (&mut chunks_a).zip(&mut chunks_b) {
-        for k in 0..4 {
-            sums[k] += a[k] * b[k];
-        }
-    }
-    let tail = chunks_a
-        .remainder()
-        .iter()
-        .zip(chunks_b.remainder())
-        .fold(S::ZERO, |sum, (&a, &b)| sum + a * b);
-    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
 }
 
 impl DirectSprings {
@@ -407,6 +254,7 @@ impl DirectSprings {
         let iterations = self.iterations.max(1);
         // A second iteration starts from the gap again: a copy, only then.
         let mut gap = (iterations > 1).then_some(rhs);
+        let mut solved = Sh::filled(P::default());
         for iteration in 1..=iterations {
             // Solved for the change of the positions so far: the right-hand side is
             // `M (y − x)` and each spring's pull at `x`. A held row's sum is dropped by the
@@ -429,6 +277,9 @@ impl DirectSprings {
                 let (wa, wb) = (&w[from_a.clone()], &w[from_b.clone()]);
                 let (ra, rb) = (&sums[from_a], &sums[from_b]);
                 let (k, ch) = (weight(m.stiffness), m.damping * h);
+                // The damping's clamp (below) bites for `wa + wb > 1 / (h c)`: that bound
+                // once a run, not a product a spring.
+                let (chh, clamp) = (ch * h, (ch > zero).then(|| P::Scalar::ONE / ch));
                 let ends = xa.iter().zip(xb).zip(va.iter().zip(vb));
                 let weights = wa.iter().zip(wb).zip(ra.iter().zip(rb));
                 for (((&xa, &xb), (&va, &vb)), ((&wa, &wb), (ra, rb))) in ends.zip(weights) {
@@ -447,10 +298,9 @@ impl DirectSprings {
                     if l <= tiny_length::<P::Scalar>() {
                         continue;
                     }
-                    let c = if ch * wsum > P::Scalar::ONE {
-                        h / wsum
-                    } else {
-                        ch * h
+                    let c = match clamp {
+                        Some(most) if wsum > most => h / wsum,
+                        _ => chh,
                     };
                     let inv = P::Scalar::ONE / l;
                     let closing = (va - vb).dot(d) * inv;
@@ -462,92 +312,27 @@ impl DirectSprings {
             if fixed {
                 ok &= r.iter().zip(w).all(|(r, &w)| w <= zero || r.is_finite());
             }
-            memory.factor.solve(r);
+            // The change of each free particle (a held one's is 0), in the rows' order.
+            let factor = &memory.factor;
+            let change = factor.solve(r, Sh::flat_mut(&mut solved));
             let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
-            for ((x, v), &r) in x.iter_mut().zip(v).zip(r.iter()) {
-                *x += r;
-                *v += r * inv_h;
+            for (&p, &dx) in factor.particles().iter().zip(change) {
+                let p = p as usize;
+                if let (Some(x), Some(v)) = (x.get_mut(p), v.get_mut(p)) {
+                    *x += dx;
+                    *v += dx * inv_h;
+                }
             }
             if let Some(gap) = &mut gap {
-                for ((g, &r), &m) in Sh::flat_mut(gap).iter_mut().zip(r.iter()).zip(mass) {
-                    *g -= r * m;
+                let g = Sh::flat_mut(gap);
+                for (&p, &dx) in factor.particles().iter().zip(change) {
+                    let p = p as usize;
+                    if let (Some(g), Some(&m)) = (g.get_mut(p), mass.get(p)) {
+                        *g -= dx * m;
+                    }
                 }
             }
         }
         ok
-    }
-}
-
-#[cfg(all(test, dunas_floats))]
-mod tests {
-    use super::*;
-    use crate::Vec2;
-    use crate::physics::shape::Grid;
-
-    /// A 5×4 grid's springs at random within the band (10), a third of the particles held:
-    /// the envelope's factor solves the free rows' system exactly, and a held row comes out
-    /// 0 whatever was summed into it.
-    #[test]
-    fn the_envelope_solves_the_free_rows() {
-        type Sh = Grid<5, 4>;
-        const N: usize = 20;
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for _ in 0..200 {
-            let free: [bool; N] = core::array::from_fn(|_| next() > 0.33);
-            let mut dense = [[0.0f64; N]; N];
-            let mut factor = Factor::<f64, Sh> {
-                low: Sh::filled(Sh::band(0.0)),
-                inv_d: Sh::filled(0.0),
-                skip: Sh::filled(0),
-            };
-            let mut diag = [0.0; N];
-            for i in 0..N {
-                diag[i] = 0.5 + next();
-                dense[i][i] = diag[i];
-            }
-            for _ in 0..30 {
-                let i = (next() * N as f64) as usize;
-                let j = i.saturating_sub(1 + (next() * Sh::BAND as f64) as usize);
-                let k = 10.0 * next();
-                if i == j || !(free[i] && free[j]) {
-                    continue;
-                }
-                diag[i] += k;
-                diag[j] += k;
-                dense[i][i] += k;
-                dense[j][j] += k;
-                dense[i][j] -= k;
-                dense[j][i] -= k;
-                Sh::band_mut(&mut Sh::flat_mut(&mut factor.low)[i])[j + Sh::BAND - i] -= k;
-            }
-            for (row, skip) in Sh::flat(&factor.low)
-                .iter()
-                .zip(Sh::flat_mut(&mut factor.skip))
-            {
-                *skip = Sh::band_flat(row).iter().take_while(|&&l| l == 0.0).count() as u16;
-            }
-            factor.factor(&diag, |i| free[i]);
-            let rhs: [Vec2<f64>; N] = core::array::from_fn(|_| Vec2::new(next() - 0.5, next()));
-            let mut x = rhs;
-            factor.solve(&mut x);
-            for i in 0..N {
-                if !free[i] {
-                    assert_eq!(x[i], Vec2::default(), "held row {i}");
-                    continue;
-                }
-                let mut sum = Vec2::default();
-                for j in (0..N).filter(|&j| free[j]) {
-                    sum += x[j] * dense[i][j];
-                }
-                let miss = (sum - rhs[i]).length();
-                assert!(miss < 1e-12, "row {i}: off by {miss:e}");
-            }
-        }
     }
 }

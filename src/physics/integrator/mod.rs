@@ -24,6 +24,7 @@
 //! Per spring, a force evaluation costs one square root, one division and about 20
 //! multiply-adds; per particle, about 6 operations.
 
+mod banded;
 mod chain;
 mod direct;
 mod euler;

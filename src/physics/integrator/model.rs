@@ -82,9 +82,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         let w = self.inv_mass();
         let mut ok = true;
         // Springs sum forces; each particle's sum is then scaled by its inverse mass once
-        // (one multiplication per particle instead of two per spring).
-        acc.fill(P::default());
+        // (one multiplication per particle instead of two per spring). Without them every
+        // entry is written below: no clearing first.
         if springs {
+            acc.fill(P::default());
             self.topology.for_each_spring(|a, b, rest, m| {
                 if let Some((f, fine)) = spring_force(x[a], x[b], v[a], v[b], rest, m) {
                     acc[a] += f;
@@ -103,14 +104,19 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
                 continue;
             }
             let force = acc[i] * w[i];
+            let pull = if springs {
+                force + self.gravity
+            } else {
+                self.gravity
+            };
             let drag = v[i] * self.damping;
             acc[i] = if w[i] > P::Scalar::ZERO {
-                force + self.gravity - drag
+                pull - drag
             } else {
                 P::default()
             };
             if fixed {
-                ok &= force.is_finite() & drag.is_finite() & acc[i].is_finite();
+                ok &= (!springs || force.is_finite()) & drag.is_finite() & acc[i].is_finite();
             }
         }
         let bodies = Bodies {
