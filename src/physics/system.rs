@@ -651,7 +651,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// [`move_pinned`](Self::move_pinned), lasted this step, for the springs' damping); a free
     /// one's coordinates flushed (see [`flush_tiny`]) and checked: its position finite and
     /// inside `±bounds`, its velocity inside the safe range. `false` when a check failed.
-    #[inline(never)]
     fn settle(&mut self, held: &[P]) -> bool {
         let (bounds, zero) = (self.settings.bounds, P::Scalar::ZERO);
         let particles = Sh::flat_mut(&mut self.state.pos)

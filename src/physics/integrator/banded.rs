@@ -45,6 +45,12 @@ impl<S: Scalar, Sh: Shape> Default for Factor<S, Sh> {
     }
 }
 
+/// The springs a [`Factor`] is built from, each as `(a, b, h² k)`.
+pub(super) trait Springs<S> {
+    /// Calls `f` for every spring, in a fixed order.
+    fn each(&self, f: impl FnMut(usize, usize, S));
+}
+
 /// How far apart two rows of a spring may be: the band, within a row's 16-bit count.
 fn reach<Sh: Shape>() -> usize {
     Sh::BAND.min(usize::from(u16::MAX))
@@ -63,7 +69,7 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         &mut self,
         free: impl Fn(usize) -> bool,
         mass: &[S],
-        springs: impl Fn(&mut dyn FnMut(usize, usize, S)),
+        springs: &impl Springs<S>,
     ) {
         let (zero, band) = (S::ZERO, Sh::BAND);
         let reach = reach::<Sh>();
@@ -75,7 +81,7 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         d.iter_mut().zip(mass).for_each(|(d, &m)| *d = m);
         let low = Sh::flat_mut(&mut self.low);
         low.fill(Sh::band(zero));
-        springs(&mut |a, b, k| {
+        springs.each(|a, b, k| {
             for end in [a, b] {
                 if free(end) {
                     d[end] += k;
@@ -118,37 +124,40 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
         for (k, &p) in order[..rows].iter().enumerate() {
             place[p as usize] = k as u32;
         }
-        // A spring the walk put farther apart than the band: the particles' own order.
-        let mut width = 0;
-        springs(&mut |a, b, _| {
-            if joined(a, b) {
-                width = width.max(place[a].abs_diff(place[b]) as usize);
+        // The matrix again, in the rows' order; in the particles' own if the walk put a
+        // spring farther apart than the band.
+        let entries = Sh::flat_mut(&mut self.entries);
+        for walked in [true, false] {
+            if !walked {
+                rows = 0;
+                for p in (0..n).filter(|&p| free(p)) {
+                    (place[p], order[rows]) = (rows as u32, p as u32);
+                    rows += 1;
+                }
             }
-        });
-        if width > reach {
-            rows = 0;
-            for p in (0..n).filter(|&p| free(p)) {
-                (place[p], order[rows]) = (rows as u32, p as u32);
-                rows += 1;
+            low.fill(Sh::band(zero));
+            entries.fill(0);
+            let mut fits = true;
+            springs.each(|a, b, k| {
+                if fits && joined(a, b) {
+                    let (pa, pb) = (place[a] as usize, place[b] as usize);
+                    let (i, j) = (pa.max(pb), pa.min(pb));
+                    fits = i - j <= reach;
+                    if fits {
+                        Sh::band_mut(&mut low[i])[j + band - i] -= k;
+                        entries[i] = entries[i].max((i - j) as u16);
+                    }
+                }
+            });
+            if fits {
+                break;
             }
         }
-        // The matrix again, in the rows' order.
         let mut ordered = Sh::filled(zero);
         let ordered_diag = Sh::flat_mut(&mut ordered);
         for (o, &p) in ordered_diag.iter_mut().zip(&order[..rows]) {
             *o = d[p as usize];
         }
-        low.fill(Sh::band(zero));
-        let entries = Sh::flat_mut(&mut self.entries);
-        entries.fill(0);
-        springs(&mut |a, b, k| {
-            if joined(a, b) {
-                let (pa, pb) = (place[a] as usize, place[b] as usize);
-                let (i, j) = (pa.max(pb), pa.min(pb));
-                Sh::band_mut(&mut low[i])[j + band - i] -= k;
-                entries[i] = entries[i].max((i - j) as u16);
-            }
-        });
         self.rows = rows;
         self.factor(ordered_diag);
     }
@@ -196,6 +205,13 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
     /// The particle of each row, in the rows' order.
     pub(super) fn particles(&self) -> &[u32] {
         &Sh::flat(&self.order)[..self.rows]
+    }
+
+    /// The entries of every row's envelope.
+    #[cfg(test)]
+    pub(super) fn entry_count(&self) -> usize {
+        let entries = Sh::flat(&self.entries).iter().take(self.rows);
+        entries.map(|&e| usize::from(e)).sum()
     }
 
     /// Solves `LDLᵀ y = r`, `r` the particles' right-hand sides taken in the rows' order,
@@ -292,6 +308,17 @@ mod tests {
     use crate::Vec2;
     use crate::physics::shape::Grid;
 
+    /// Springs listed as `(a, b, h² k)`, one from a particle to itself left out.
+    struct List<'a>(&'a [(usize, usize, f64)]);
+
+    impl Springs<f64> for List<'_> {
+        fn each(&self, mut f: impl FnMut(usize, usize, f64)) {
+            for &(a, b, k) in self.0.iter().filter(|s| s.0 != s.1) {
+                f(a, b, k);
+            }
+        }
+    }
+
     /// A 5×4 grid's springs at random, within the band (10) and beyond it, a third of the
     /// particles held: the rows' factor solves the free particles' system exactly (the
     /// springs beyond the band on the diagonals only), every free particle once.
@@ -315,16 +342,12 @@ mod tests {
                 let j = i.saturating_sub(1 + (next() * 1.5 * Sh::BAND as f64) as usize);
                 (i, j, 10.0 * next())
             });
-            let list = |f: &mut dyn FnMut(usize, usize, f64)| {
-                for &(a, b, k) in springs.iter().filter(|s| s.0 != s.1) {
-                    f(a, b, k);
-                }
-            };
+            let list = List(&springs);
             let mut dense = [[0.0f64; N]; N];
             for i in 0..N {
                 dense[i][i] = mass[i];
             }
-            list(&mut |a, b, k| {
+            list.each(|a, b, k| {
                 for (p, q) in [(a, b), (b, a)] {
                     if free[p] {
                         dense[p][p] += k;
@@ -335,7 +358,7 @@ mod tests {
                 }
             });
             let mut factor = Factor::<f64, Sh>::default();
-            factor.build(|i| free[i], &mass, list);
+            factor.build(|i| free[i], &mass, &list);
             let particles = factor.particles();
             let mut seen = [false; N];
             for &p in particles {
