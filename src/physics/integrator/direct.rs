@@ -371,7 +371,7 @@ mod tests {
             damping: 0.6,
         };
         let springs = GridSprings::<f64, 8, 8>::new(0.4, 0.5, [0.6, 0.6], [m; 3]);
-        let held = |i: usize| i % 8 == 0 || !(8..56).contains(&i);
+        let held = |i: usize| i.is_multiple_of(8) || !(8..56).contains(&i);
         let mass: [f64; 64] = core::array::from_fn(|i| if held(i) { 0.0 } else { 0.03 });
         let weighted = Weighted {
             topology: &springs,
