@@ -42,7 +42,7 @@ use crate::{Error, Point, Scalar, Vec2, Vec3};
 /// particles, 0.4% with its drawn closed curve, `Touch::DrawnLoop`, which stays above the
 /// floor). On a Cortex-M0 in
 /// Q16.16 (`examples/mcu_jelly.rs`, 8 particles on a floor) a frame with its closed curve
-/// takes 24 355 instructions on average and up to 26 538. In 3D (`tests/suite/torus.rs`): at
+/// takes 24 571 instructions on average and up to 26 757. In 3D (`tests/suite/torus.rs`): at
 /// rest an 8×8 torus's springs balance its gas by the virial identity (`Σ k (l − r) l =
 /// 3 · amount`) to 5 digits, and one undamped step changes the springs', gas's and motion's
 /// energy by `O(h²)` (the pushes are the energy's gradient).

@@ -23,7 +23,10 @@ use core::cell::Cell;
 /// a cloth) it is banded. The system keeps its factor (`LDLᵀ`, no pivoting: the matrix is
 /// positive definite) in its [`Factored`] memory and factors again only when the step's
 /// length, a mass, a pin or a spring changed (a `hang`, a `release`, a snap, a cut, another
-/// `dt`: use [`FixedTimestep`](crate::FixedTimestep) to keep it). Each of `iterations`
+/// `dt`: use [`FixedTimestep`](crate::FixedTimestep) to keep it). The matrix's rows are
+/// the free particles only, in the order of a breadth-first walk over the springs,
+/// reversed, which keeps their envelopes short (the particles' own order where the walk
+/// would put a spring beyond the band). Each of `iterations`
 /// points every spring at its rest length from the positions so far (the first from where
 /// the velocities alone would carry the particles, so a loaded cloth at rest stays in its
 /// balance) and solves for the change of the positions (a forward and a back substitution).
@@ -52,17 +55,18 @@ use core::cell::Cell;
 ///   [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m stretches it
 ///   1.7% here).
 ///
-/// Cost per solve, `n` particles and band `b` (2 for a rope, `2U` for a cloth): a factor,
-/// when something changed, of about `n·b²/2` multiply-adds; per iteration a square root and a
-/// division a spring and `2·e` vector multiply-adds, `e ≤ n·b` the entries of the rows'
-/// envelopes (each row from its first spring in the band: a held particle's row is empty).
-/// The same at every stiffness. A topology that lists its springs in runs
-/// ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers taken once. On a
-/// Cortex-M4F the 8×8 sail (band 16, 22 particles held, 521 entries) takes about 65 000
-/// instructions a step, 49 000 of them the iteration, and 84 000 more for a new factor
-/// (`examples/mcu_sail.rs`). Memory: the factor, the masses
-/// and the envelopes, `n·(b + 2)` scalars and `n` 16-bit counts in the system (4.7 KB for
-/// the 8×8 sail in `f32`), and about `n·7` scalars of stack in 3D.
+/// Cost per solve, `n` particles of which `f` free, and band `b` (2 for a rope, `2U` for a
+/// cloth): a factor, when something changed, of two passes over the springs, a walk of
+/// about `n·2b` steps and about `f·b²/2` multiply-adds; per iteration a square root and a
+/// division a spring and `2·e` vector multiply-adds, `e ≤ f·b` the entries of the rows'
+/// envelopes (each row from its first spring). The same at every stiffness. A topology
+/// that lists its springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each
+/// run's numbers taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free,
+/// 378 entries) takes about 58 000 instructions a step, 44 600 of them the iteration, and
+/// 124 000 more for a new factor (`examples/mcu_sail.rs`). Memory: the factor, the
+/// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
+/// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
+/// `n·10` scalars of stack in 3D.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectSprings {
     /// Iterations a solve, each a spring direction update and a back-substitution (1 by
@@ -273,8 +277,8 @@ impl DirectSprings {
         let mut solved = Sh::filled(P::default());
         for iteration in 1..=iterations {
             // Solved for the change of the positions so far: the right-hand side is
-            // `M (y − x)` and each spring's pull at `x`. A held row's sum is dropped by the
-            // solve (its inverse pivot is 0), so pulls are added to both ends unchecked.
+            // `M (y − x)` and each spring's pull at `x`. A held particle is no row of the
+            // solve, so pulls are added to both ends unchecked.
             if let (Some(gap), true) = (&gap, iteration > 1) {
                 rhs = *gap;
             }
