@@ -38,6 +38,7 @@ const INTEGRATORS: [(&str, AnyIntegrator); 8] = [
         AnyIntegrator::DirectSprings(DirectSprings {
             iterations: 1,
             substeps: 1,
+            keep_energy: false,
         }),
     ),
 ];

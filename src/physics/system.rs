@@ -434,20 +434,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// particle and a square root per spring; may saturate in `Q16`, and overflow to ±∞ in
     /// floats past the format's range.
     pub fn energy(&self) -> P::Scalar {
-        let half = P::Scalar::ratio(1, 2);
-        let (x, v, w) = (self.positions(), self.velocities(), self.inv_masses());
-        let mut e = P::Scalar::ZERO;
-        for i in 0..x.len() {
-            if w[i] > P::Scalar::ZERO {
-                let m = P::Scalar::ONE / w[i];
-                e += m * (half * v[i].dot(v[i]) - self.settings.gravity.dot(x[i]));
-            }
-        }
-        self.topology.for_each_spring(|a, b, rest, mat| {
-            let s = x[a].distance(x[b]) - rest;
-            e += half * mat.stiffness * s * s;
-        });
-        e
+        let model: Model<'_, P, Sh, T> = Model {
+            inv_mass: &self.inv_mass,
+            topology: &self.topology,
+            gravity: self.settings.gravity,
+            damping: self.settings.damping,
+            time: self.time,
+        };
+        model.energy(self.positions(), self.velocities())
     }
 
     /// The highest angular frequency `ω` (rad/s) of the springs, by Gershgorin's bound, and

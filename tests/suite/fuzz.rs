@@ -570,6 +570,7 @@ fn direct_builds_hold_up<S: Scalar>(
         DirectSprings {
             iterations,
             substeps,
+            keep_energy: iterations % 2 == 1,
         },
         b,
     );

@@ -64,6 +64,28 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         Sh::flat(self.inv_mass)
     }
 
+    /// The energy of the motion at `(x, v)`: each free particle's kinetic and gravitational
+    /// (relative to the origin) energy, and every spring's `½ k (l − rest)²`. A held particle
+    /// counts as infinitely heavy and still. A division a particle and a square root a
+    /// spring; may saturate in `Q16`, and overflow to ±∞ in floats past the format's range.
+    pub(crate) fn energy(&self, x: &[P], v: &[P]) -> P::Scalar {
+        let (zero, half) = (P::Scalar::ZERO, P::Scalar::ratio(1, 2));
+        let mut e = zero;
+        for ((x, v), &w) in x.iter().zip(v).zip(self.inv_mass()) {
+            if w > zero {
+                let m = P::Scalar::ONE / w;
+                e += m * (half * v.dot(*v) - self.gravity.dot(*x));
+            }
+        }
+        self.topology.for_each_spring(|a, b, rest, m| {
+            if let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) {
+                let s = xa.distance(xb) - rest;
+                e += half * m.stiffness * s * s;
+            }
+        });
+        e
+    }
+
     /// Accelerations at state `(x, v)`: gravity, damping, springs (unless `springs` is
     /// false) and the force fields. Returns `false` when a `Q16` force or acceleration
     /// saturated.
