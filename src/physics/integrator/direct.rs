@@ -89,7 +89,7 @@ pub struct DirectSprings {
     /// (symplectic Euler 35%, Verlet 41%: `docs/summary.md`, section (j)). The motion it
     /// keeps is livelier where stiff springs turn: a heavy bob stretches its rope as
     /// symplectic Euler's does. Costs two passes over the springs more a solve, a square
-    /// root a spring each (the 8-particle rope's frame 1.5 times as dear).
+    /// root a spring each (the 8-particle rope's frame 1.4 times as dear).
     pub keep_energy: bool,
 }
 
