@@ -62,7 +62,7 @@ use core::cell::Cell;
 /// envelopes (each row from its first spring). The same at every stiffness. A topology
 /// that lists its springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each
 /// run's numbers taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free,
-/// 378 entries) takes about 58 000 instructions a step, 44 600 of them the iteration, and
+/// 378 entries) takes about 58 000 instructions a step, 44 400 of them the iteration, and
 /// 124 000 more for a new factor (`examples/mcu_sail.rs`). Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
