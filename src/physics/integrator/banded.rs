@@ -10,7 +10,8 @@ use crate::{Point, Scalar};
 /// Its rows are the free particles only, in the order of a breadth-first walk over the
 /// springs, reversed (Cuthill–McKee's reverse), where that keeps every spring within the
 /// band, or in their own order otherwise: on the boat scene's 8×8 sail, 42 rows of 378
-/// entries where the particles' own order keeps 64 rows of 521. Row `k` of `L` holds
+/// entries, where the particles' own order holds 458 (and the earlier solver's 64 rows,
+/// the held particles' included, held 521). Row `k` of `L` holds
 /// `L[k][j]` at `j + b − k` for the columns `j` from `k − b` to `k − 1`; `entries[k]` counts
 /// the columns of row `k`'s envelope, from its first spring to `k − 1` (the factor fills no
 /// slot before it).
@@ -59,12 +60,13 @@ fn reach<Sh: Shape>() -> usize {
 impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
     /// Builds and factors the matrix of the particles `free` says are free: `mass` on the
     /// diagonal (particle by particle), and each spring that `springs` lists as `(a, b, h² k)`
-    /// (`a ≠ b`, `h² k > 0`, both below the particle count). A spring puts its weight on
-    /// its free ends' diagonals; it joins them in the band when both are free and at most
+    /// (`a ≠ b`, `h² k > 0`, both below the particle count, as a
+    /// [`Topology`](crate::physics::spring::Topology)'s are). A spring puts its weight on its
+    /// free ends' diagonals; it joins them in the band when both are free and at most
     /// [`Shape::BAND`] (and 65 535) apart in the particles' order: any other spring is on the
     /// diagonals only (a block-Jacobi split: converged iterations reach the same positions).
-    /// Cost: two passes over the springs, a walk of `n·2b` steps and the factor, about
-    /// `rows·e²/2` multiply-adds for `e` entries a row.
+    /// Cost: two passes over the springs (three when the walk's order does not fit), a walk
+    /// of `n·2b` steps and the factor, about `rows·e²/2` multiply-adds for `e` entries a row.
     pub(super) fn build(
         &mut self,
         free: impl Fn(usize) -> bool,
@@ -73,13 +75,13 @@ impl<S: Scalar, Sh: Shape> Factor<S, Sh> {
     ) {
         let (zero, band) = (S::ZERO, Sh::BAND);
         let reach = reach::<Sh>();
+        let low = Sh::flat_mut(&mut self.low);
         let n = mass.len();
         let joined = |a: usize, b: usize| a.abs_diff(b) <= reach && free(a) && free(b);
         // The matrix in the particles' order first: its band says who is joined to whom.
         let mut diag = Sh::filled(zero);
         let d = Sh::flat_mut(&mut diag);
         d.iter_mut().zip(mass).for_each(|(d, &m)| *d = m);
-        let low = Sh::flat_mut(&mut self.low);
         low.fill(Sh::band(zero));
         springs.each(|a, b, k| {
             for end in [a, b] {
