@@ -136,14 +136,16 @@ pub trait Scalar:
     }
     /// A small integer as a scalar (exact for `|i| <= 16383` in every format).
     fn from_i16(i: i16) -> Self;
-    /// `self`, or 0 when `|self| < tiny` (`tiny ≥ 0`): the flush of values that decay
-    /// towards a float's subnormals. Floats compare their bits, in integer steps.
+    /// `self`, or 0 when `|self| < tiny`: the flush of values that decay towards a float's
+    /// subnormals. Floats compare their bits, in integer steps, for a `tiny` from `+0` to
+    /// `+∞` (any other compares as floats do).
     #[inline]
     fn flush_tiny(self, tiny: Self) -> Self {
         if self.abs() < tiny { Self::ZERO } else { self }
     }
-    /// `|self| ≤ limit`, `false` for NaN (`limit` finite and `≥ 0`). Floats compare their
-    /// bits, in integer steps: a subtraction whose sign says it.
+    /// `|self| ≤ limit`, `false` for NaN. Floats compare their bits, in integer steps (a
+    /// subtraction whose sign says it), for a `limit` from `+0` to `+∞` (any other compares
+    /// as floats do).
     #[inline]
     fn within(self, limit: Self) -> bool {
         self.abs() <= limit
@@ -224,16 +226,21 @@ macro_rules! impl_float {
                 i as $t
             }
             // A float's magnitude is its bits without the sign: ordered as the values, NaN
-            // above infinity.
+            // above infinity. A bound from +0 to +∞ has the bits of its magnitude (−0 is
+            // made +0 by adding +0); a negative or NaN one holds nothing.
             #[inline]
             fn flush_tiny(self, tiny: Self) -> Self {
                 let sign = (-0.0 as $t).to_bits();
-                if self.to_bits() & !sign < tiny.to_bits() { 0.0 } else { self }
+                let bound = (tiny + 0.0).to_bits();
+                let small = self.to_bits() & !sign < bound;
+                if small && bound <= <$t>::INFINITY.to_bits() { 0.0 } else { self }
             }
             #[inline]
             fn within(self, limit: Self) -> bool {
                 let sign = (-0.0 as $t).to_bits();
-                limit.to_bits().wrapping_sub(self.to_bits() & !sign) & sign == 0
+                let bound = (limit + 0.0).to_bits();
+                let inside = bound.wrapping_sub(self.to_bits() & !sign) & sign == 0;
+                inside & (bound <= <$t>::INFINITY.to_bits())
             }
             #[inline]
             fn floor_i32(self) -> i32 {
@@ -285,6 +292,48 @@ mod approx_f32 {
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
+
+    /// The floats' bit tests of `flush_tiny` and `within` answer as the float comparisons
+    /// do, for every pair of edge values: signed zeros, subnormals, infinities, NaN, and
+    /// negative bounds.
+    #[test]
+    fn bit_tests_agree_with_the_comparisons() {
+        let edges = [
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE / 4.0,
+            -f32::MIN_POSITIVE,
+            f32::EPSILON * f32::EPSILON,
+            1.0,
+            -1.0,
+            1e18,
+            -3e38,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+        ];
+        for &x in &edges {
+            for &bound in &edges {
+                let flushed = if x.abs() < bound { 0.0 } else { x };
+                assert_eq!(
+                    x.flush_tiny(bound).to_bits(),
+                    flushed.to_bits(),
+                    "{x} {bound}"
+                );
+                assert_eq!(x.within(bound), x.abs() <= bound, "{x} {bound}");
+                let (x, bound) = (f64::from(x), f64::from(bound));
+                let flushed = if x.abs() < bound { 0.0 } else { x };
+                assert_eq!(
+                    x.flush_tiny(bound).to_bits(),
+                    flushed.to_bits(),
+                    "{x} {bound}"
+                );
+                assert_eq!(x.within(bound), x.abs() <= bound, "{x} {bound}");
+            }
+        }
+    }
 
     #[test]
     fn ratio_is_correctly_rounded() {

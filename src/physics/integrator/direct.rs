@@ -169,7 +169,11 @@ impl Integrator for DirectSprings {
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> bool {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            self.solve_step(model, state, memory, hs, forces)
+            if self.keep_energy {
+                self.solve_keeping(model, state, memory, hs, forces)
+            } else {
+                self.solve(model, state, memory, hs, forces, None)
+            }
         };
         super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
     }
@@ -259,20 +263,6 @@ impl<S: Scalar, T: Topology<S>, W: Fn(S) -> S> Springs<S> for Weighted<'_, T, W>
 }
 
 impl DirectSprings {
-    fn solve_step<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
-        &self,
-        model: &Model<'_, P, Sh, T>,
-        state: &mut State<P, Sh>,
-        memory: &mut Factored<P::Scalar, Sh>,
-        h: P::Scalar,
-        forces: &mut F,
-    ) -> bool {
-        if self.keep_energy {
-            return self.solve_keeping(model, state, memory, h, forces);
-        }
-        self.solve(model, state, memory, h, forces, None)
-    }
-
     /// [`solve`](Self::solve), then the energy its damping took given back (see
     /// [`keep_energy`](Self::keep_energy)); its own function, so that a solve without it
     /// keeps no room on the stack for the start's positions and the forces.
@@ -288,7 +278,7 @@ impl DirectSprings {
         // The motion's energy at the start, less what the springs' damping takes over the
         // solve, plus what earlier solves owe; where the particles started.
         let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
-        let e0 = model.energy(x, v) - damping_loss(model, x, v, h) + memory.owed;
+        let e0 = model.energy_less_damping(x, v, h) + memory.owed;
         let x0 = state.pos;
         let mut pushes = Sh::filled(P::default());
         let ok = self.solve(model, state, memory, h, forces, Some(&mut pushes));
@@ -440,39 +430,6 @@ impl DirectSprings {
         }
         ok
     }
-}
-
-/// The energy the springs' damping takes over a solve of `h` from `(x, v)`: each spring's
-/// `c (dl/dt)² h`, its `c` clamped as the solve clamps it (`c ≤ 1 / (h (wa + wb))`).
-fn damping_loss<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
-    model: &Model<'_, P, Sh, T>,
-    x: &[P],
-    v: &[P],
-    h: P::Scalar,
-) -> P::Scalar {
-    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
-    let w = model.inv_mass();
-    let mut loss = zero;
-    model.topology.for_each_spring(|a, b, _, m| {
-        let ends = (x.get(a), x.get(b), v.get(a), v.get(b), w.get(a), w.get(b));
-        let (Some(&xa), Some(&xb), Some(&va), Some(&vb), Some(&wa), Some(&wb)) = ends else {
-            return;
-        };
-        let d = xa - xb;
-        let l = d.length();
-        let wsum = wa + wb;
-        if m.damping <= zero || wsum <= zero || l <= tiny_length::<P::Scalar>() {
-            return;
-        }
-        let closing = (va - vb).dot(d) / l;
-        let c = if m.damping * h * wsum > one {
-            one / (h * wsum)
-        } else {
-            m.damping
-        };
-        loss += c * closing * closing * h;
-    });
-    loss
 }
 
 /// Scales the free particles' velocities so that the motion's energy is back to `e0` (the

@@ -69,18 +69,45 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
     /// counts as infinitely heavy and still. A division a particle and a square root a
     /// spring; may saturate in `Q16`, and overflow to ±∞ in floats past the format's range.
     pub(crate) fn energy(&self, x: &[P], v: &[P]) -> P::Scalar {
-        let (zero, half) = (P::Scalar::ZERO, P::Scalar::ratio(1, 2));
+        self.energy_less_damping(x, v, P::Scalar::ZERO)
+    }
+
+    /// [`energy`](Self::energy) less what the springs' damping takes over a solve of `h`
+    /// from `(x, v)`: each spring's `c (dl/dt)² h`, its `c` clamped as
+    /// [`DirectSprings`](super::DirectSprings) clamps it (`c ≤ 1 / (h (wa + wb))`); in the
+    /// same pass over the springs.
+    pub(crate) fn energy_less_damping(&self, x: &[P], v: &[P], h: P::Scalar) -> P::Scalar {
+        let (zero, one, half) = (P::Scalar::ZERO, P::Scalar::ONE, P::Scalar::ratio(1, 2));
+        let w = self.inv_mass();
         let mut e = zero;
-        for ((x, v), &w) in x.iter().zip(v).zip(self.inv_mass()) {
+        for ((x, v), &w) in x.iter().zip(v).zip(w) {
             if w > zero {
-                let m = P::Scalar::ONE / w;
+                let m = one / w;
                 e += m * (half * v.dot(*v) - self.gravity.dot(*x));
             }
         }
         self.topology.for_each_spring(|a, b, rest, m| {
-            if let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) {
-                let s = xa.distance(xb) - rest;
-                e += half * m.stiffness * s * s;
+            let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else {
+                return;
+            };
+            let d = xb - xa;
+            let l = d.length();
+            let s = l - rest;
+            e += half * m.stiffness * s * s;
+            let ends = (v.get(a), v.get(b), w.get(a), w.get(b));
+            let (Some(&va), Some(&vb), Some(&wa), Some(&wb)) = ends else {
+                return;
+            };
+            let wsum = wa + wb;
+            if h > zero && m.damping > zero && wsum > zero && l > super::tiny_length::<P::Scalar>()
+            {
+                let closing = (vb - va).dot(d) / l;
+                let c = if m.damping * h * wsum > one {
+                    one / (h * wsum)
+                } else {
+                    m.damping
+                };
+                e -= c * closing * closing * h;
             }
         });
         e
