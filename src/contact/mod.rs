@@ -30,7 +30,7 @@
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
 //!   spacing; a collider the drawn rope touches costs about 4× what it costs at the
-//!   particles (`docs/summary.md` (g): 1 170 against 269 ns a frame for an 8-particle rope
+//!   particles (`docs/summary.md` (g): 1 458 against 389 ns a frame for an 8-particle rope
 //!   on a peg).
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's

@@ -49,7 +49,7 @@ use crate::{Point, Scalar};
 /// Cost: per iteration, a square root, two inverses and about 15 multiplications a link
 /// (in `Q16` no division: a link's inverse length comes with its root,
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
-/// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.27
+/// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.24
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
 /// Q16.16, one solve of up to 2 iterations takes up to 18 326 instructions a step for 8
 /// particles, and a frame with its 33-point curve up to 23 551 (`examples/mcu_catapult.rs`).
