@@ -30,6 +30,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         iterations: 2,
         inextensible: true,
         substeps: 1,
+        halvings: 6,
     };
     let settings = Settings {
         gravity: Vec2::new(px(0), px(-200)),

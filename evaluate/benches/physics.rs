@@ -31,6 +31,7 @@ const INTEGRATORS: [(&str, AnyIntegrator); 8] = [
             iterations: 4,
             inextensible: true,
             substeps: 4,
+            halvings: 6,
         }),
     ),
     (

@@ -86,6 +86,7 @@ impl Catapult {
             iterations: 6,
             inextensible: true,
             substeps: 6,
+            halvings: 6,
         });
         let material = Material {
             stiffness: 4000.0,

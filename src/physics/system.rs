@@ -7,7 +7,7 @@ use crate::error::{
 };
 use crate::physics::body::Body;
 use crate::physics::force::ForceField;
-use crate::physics::integrator::{Integrator, Model, State, SymplecticEuler};
+use crate::physics::integrator::{DirectChain, Integrator, Model, Solved, State, SymplecticEuler};
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
@@ -38,7 +38,25 @@ pub struct StepInfo<S> {
     /// Springs that snapped at the end of the step (their [`Snap`](crate::physics::spring::Snap)
     /// limits, checked once a step); they stay broken.
     pub snapped: u16,
+    /// `false` when the step did not keep what its method promises: an iterating solve
+    /// ended beyond its tolerance after its last iteration and its last halving, or a link
+    /// that the method holds ended more than [`DirectChain::TOLERANCE`] (0.1%) from its
+    /// length, after the contacts (see [`stretch`](Self::stretch)). The step is kept. `true`
+    /// for methods that neither iterate to a tolerance nor hold links.
+    pub converged: bool,
+    /// For a method that holds its links at their rest length
+    /// ([`Integrator::holds_links`]: an inextensible `DirectChain`), the largest
+    /// `|length − rest| / rest` of a link at the end of the step, after the contacts (0.001
+    /// is 0.1%); a step that would leave it above [`MAX_STRETCH`] is refused. 0 for the
+    /// methods whose links are springs (they stretch by design: measure them with
+    /// [`MassSpring::positions`]).
+    pub stretch: S,
 }
+
+/// The largest stretch of a held link a step keeps (10%, as a fraction): a step of an
+/// inextensible [`DirectChain`](crate::integrator::DirectChain) that would leave a link
+/// further from its length is refused with [`Error::Diverged`] and the state as it was.
+pub const MAX_STRETCH: (u32, u32) = (1, 10);
 
 /// Particles joined by springs, advanced by an [`Integrator`].
 ///
@@ -441,7 +459,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             damping: self.settings.damping,
             time: self.time,
         };
-        model.energy(self.positions(), self.velocities())
+        let held = self.settings.integrator.holds_links();
+        model.energy(self.positions(), self.velocities(), held)
     }
 
     /// The highest angular frequency `ω` (rad/s) of the springs, by Gershgorin's bound, and
@@ -541,7 +560,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
-        let saturated = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
+        let (solved, stretch) = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -550,8 +569,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 dt
             },
             slow_motion,
-            saturated,
+            saturated: !solved.fits,
             snapped: self.snap(),
+            converged: solved.converged,
+            stretch,
         })
     }
 
@@ -568,13 +589,15 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
-        let saturated = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
+        let (solved, stretch) = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
             simulated: h,
             slow_motion: false,
-            saturated,
+            saturated: !solved.fits,
             snapped: self.snap(),
+            converged: solved.converged,
+            stretch,
         })
     }
 
@@ -585,17 +608,20 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         u16::try_from(snapped).unwrap_or(u16::MAX)
     }
 
-    /// `n` substeps of `h`, undone if the result is not sane; `Ok(true)` when a `Q16` force
-    /// saturated on the way.
+    /// `n` substeps of `h`, undone if the result is not sane; what the substeps reported,
+    /// and the held links' stretch ([`StepInfo::stretch`]).
     fn substeps_or_undo<F: ForceField<P>>(
         &mut self,
         n: u16,
         h: P::Scalar,
         forces: &mut F,
         resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
-    ) -> Result<bool, Error> {
+    ) -> Result<(Solved, P::Scalar), Error> {
         let saved = (self.state, self.time);
-        let mut unsaturated = true;
+        let mut solved = Solved {
+            fits: true,
+            converged: true,
+        };
         for k in 1..=n {
             let model = Model {
                 inv_mass: &self.inv_mass,
@@ -606,25 +632,51 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             };
             let lag = h * P::Scalar::from_i16((n - k) as i16);
             let inv_mass = &self.inv_mass;
-            unsaturated &= self.settings.integrator.substep_touching(
+            solved = solved.and(self.settings.integrator.substep_touching(
                 &model,
                 &mut self.state,
                 &mut self.memory,
                 (h, lag),
                 forces,
                 &mut |state, times| resolve(state, inv_mass, times),
-            );
+            ));
             self.time += h;
         }
-        if !unsaturated {
+        if !solved.fits {
             self.calm();
         }
-        if self.settle(Sh::flat(&saved.0.pos)) {
-            Ok(!unsaturated)
+        let stretch = if self.settings.integrator.holds_links() {
+            self.link_stretch()
+        } else {
+            P::Scalar::ZERO
+        };
+        let (most, of) = MAX_STRETCH;
+        let (off, whole) = DirectChain::TOLERANCE;
+        solved.converged &= stretch <= P::Scalar::ratio(off, whole);
+        if self.settle(Sh::flat(&saved.0.pos)) && stretch <= P::Scalar::ratio(most, of) {
+            Ok((solved, stretch))
         } else {
             (self.state, self.time) = saved;
             Err(Error::Diverged)
         }
+    }
+
+    /// The largest `|length − rest| / rest` of a link (a spring from particle `i` to
+    /// `i + 1`): a square root a link and one division.
+    fn link_stretch(&self) -> P::Scalar {
+        let x = self.positions();
+        // The largest ratio as its numerator and denominator, compared by products.
+        let (mut off, mut of) = (P::Scalar::ZERO, P::Scalar::ONE);
+        self.topology.for_each_spring(|a, b, rest, _| {
+            if let (1, Some(&xa), Some(&xb)) = (a.abs_diff(b), x.get(a), x.get(b)) {
+                let o = (xb - xa).length() - rest;
+                let o = o.abs();
+                if !(o * of <= off * rest) {
+                    (off, of) = (o, rest);
+                }
+            }
+        });
+        off / of
     }
 
     /// After a `Q16` step whose forces saturated (a hand yanked far past what the rope can

@@ -561,7 +561,8 @@ fn builds_hold_up<S: Scalar>(b: &Build) {
 }
 
 /// The direct solvers with any count of iterations and of solves a step (0 counts as 1),
-/// the chain inextensible or not, on ropes of any build.
+/// the chain inextensible or not and halved up to 0 to 15 times (past the cap of 12), on
+/// ropes of any build.
 fn direct_builds_hold_up<S: Scalar>(
     b: &Build,
     (iterations, substeps, inextensible): (u8, u8, bool),
@@ -578,6 +579,7 @@ fn direct_builds_hold_up<S: Scalar>(
         iterations,
         inextensible,
         substeps,
+        halvings: substeps * 5,
     };
     built_rope_holds_up::<S, _, 8>(chain, b);
 }

@@ -23,6 +23,7 @@ mod layers;
 mod physics;
 mod ppm;
 mod pressure;
+mod promises;
 mod properties;
 mod regressions;
 mod rope;

@@ -521,6 +521,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             slow_motion: slow,
             saturated,
             snapped: 0,
+            converged: true,
+            stretch: P::Scalar::ZERO,
         })
     }
 

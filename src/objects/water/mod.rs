@@ -339,5 +339,7 @@ fn stepped<S: Scalar>(n: usize, h: S, slow_motion: bool) -> StepInfo<S> {
         slow_motion,
         saturated: false,
         snapped: 0,
+        converged: true,
+        stretch: S::ZERO,
     }
 }

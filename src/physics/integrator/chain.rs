@@ -1,7 +1,7 @@
 //! Springs along a chain solved all at once: one direct (tridiagonal) solve per iteration,
 //! whatever the stiffness and the masses.
 
-use super::{Integrator, Model, State, sealed, tiny_length};
+use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
@@ -12,30 +12,47 @@ use crate::{Point, Scalar};
 ///
 /// Each solve predicts the motion from gravity, damping and the force fields, then makes the
 /// links (the springs joining particle `i` to `i + 1`) distance constraints and solves them
-/// together: each of `iterations` Newton iterations builds the links' tridiagonal system
-/// `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` (`J` the links' directions, `W` the inverse masses, `C`
-/// their stretch, `α̃ = 1 / (k h²)` their compliance), solves it directly (Thomas's
+/// together: each of up to `iterations` Newton iterations builds the links' tridiagonal
+/// system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` (`J` the links' directions, `W` the inverse masses,
+/// `C` their stretch, `α̃ = 1 / (k h²)` their compliance), solves it directly (Thomas's
 /// algorithm: one inverse a link) and takes the step, or half of it and so on while that
 /// would not lower the links' squared stretch (a line search: far from the solution, as in
-/// a whip, a full step overshoots). The last of two or more iterations starts near the
-/// solution and is taken whole, unmeasured. With `inextensible` the compliance is 0 and
-/// every link holds its rest length; otherwise the links keep their springs' stiffness `k`,
-/// as backward Euler would, with no stability limit. Other springs (a hub, bending springs,
-/// a cloth's shear) are projected once an iteration as [`Xpbd`](super::Xpbd) does. A held
-/// particle moves with its hand through the solves. Velocities are each solve's displacement over
-/// its length. Contacts are resolved after each solve, not inside it: a collider much
-/// thinner than the particle spacing can be pulled through by the links (a peg of a tenth of
-/// the spacing is; one of a third holds the rope, `direct_chain_rests_on_a_peg`); for thin
-/// pegs, use [`SymplecticEuler`](super::SymplecticEuler).
+/// a whip, a full step overshoots). With `inextensible` the compliance is 0 and every link
+/// holds its rest length; otherwise the links keep their springs' stiffness `k`, as
+/// backward Euler would, with no stability limit. Other springs (a hub, bending springs, a
+/// cloth's shear) are projected once an iteration as [`Xpbd`](super::Xpbd) does. A held
+/// particle moves with its hand through the solves. Velocities are each solve's
+/// displacement over its length.
 ///
-/// Measured (`tests/suite/physics.rs`, `direct_chain_*`), with the defaults (4 solves of up to 4
-/// iterations a 60 Hz frame), one substep a frame at any stiffness:
+/// **Converge or say so.** A solve that ends with a link more than
+/// [`TOLERANCE`](Self::TOLERANCE) (0.1%) from its goal is undone and done again as two
+/// solves of half its length, up to [`halvings`](Self::halvings) times. Links that start a
+/// solve beyond the tolerance (put there by the game, or left by a solve that did not
+/// converge) are first brought back as positions only, so that the correction does not
+/// become speed. Every step measures its links after the contacts and reports the largest
+/// stretch ([`StepInfo::stretch`](crate::system::StepInfo::stretch)) and whether it kept
+/// the tolerance ([`StepInfo::converged`](crate::system::StepInfo::converged)); a step that
+/// would leave a link more than [`MAX_STRETCH`](crate::system::MAX_STRETCH) (10%) off is
+/// refused with [`Error::Diverged`](crate::Error::Diverged) and the state as it was.
+/// Contacts are resolved after each solve, not inside it; where they moved particles and
+/// stretched a link, the links are brought back with those particles 4 times as heavy. A
+/// collider much thinner than the particle spacing can still be pulled through by the links
+/// (a peg of a tenth of the spacing is; one of a third holds the rope,
+/// `direct_chain_rests_on_a_peg`); for thin pegs, use
+/// [`SymplecticEuler`](super::SymplecticEuler).
+///
+/// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
+/// the defaults (4 solves of up to 4 iterations a 60 Hz frame), one substep a frame at any
+/// stiffness:
 /// - the catapult's rope (1.6 m, 0.4 kg, 8 particles) whirled with its 3 kg penguin: links
 ///   within 0.01% of their length, the drawn curve within 0.5% (0.21% measured;
 ///   symplectic Euler on the same springs stretches 55%);
 /// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.001% on the links,
 ///   0.11% on the drawn curve);
-/// - 1 000 times: not held (the links stretch several times over); use a shorter step;
+/// - a bob 1 000 times the rope's mass, released level: links within 0.1%, the step
+///   flagged unconverged in 7 frames of 240; a 70 kg player on a 2 kg, 12-particle rope
+///   at one solve of two iterations a frame: within 0.1%, no frame flagged;
+/// - one step of 1 s under that player: within 0.1%; one of 10 s: refused;
 /// - an undamped released rope keeps 18% of its swing's energy over 10 s without a bob and
 ///   40% to 48% with one of 1 to 10 times its mass, against 96% to 97% for symplectic
 ///   Euler and Verlet: a solve removes the velocity that stretches a link, and a whipping
@@ -46,7 +63,8 @@ use crate::{Point, Scalar};
 ///   without a bob, but the light links beside a heavy bob then whip out of control: their
 ///   sideways motion under its tension is stepped explicitly.)
 ///
-/// Cost: per iteration, a square root, two inverses and about 15 multiplications a link
+/// Cost: per iteration, a square root, two inverses and about 15 multiplications a link, and
+/// a square root a link a solve to measure where the links start
 /// (in `Q16` no division: a link's inverse length comes with its root,
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.24
@@ -55,23 +73,39 @@ use crate::{Point, Scalar};
 /// particles, and a frame with its 33-point curve up to 23 551 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
-    /// Newton iterations a solve at most (4 by default); an inextensible rope stops once
-    /// its links are within 10⁻⁶ of its length. 0 counts as 1.
+    /// Newton iterations a solve at most (4 by default); a solve stops as soon as its links
+    /// are within 10⁻⁶ of the rope's length. 0 counts as 1.
     pub iterations: u8,
     /// `true`: every link at its rest length (an inextensible rope). `false`: the links'
     /// springs with their stiffness.
     pub inextensible: bool,
     /// Solves a step, each of an equal share of it (4 by default); 0 counts as 1.
     pub substeps: u8,
+    /// How many times a solve that ends with a link beyond [`DirectChain::TOLERANCE`] of
+    /// its goal is undone and done again as two of half its length (6 by default: down to
+    /// 1/64 of its share; at most 12); 0 never. A share then costs up to `2^(halvings + 1)`
+    /// solves. What is still beyond the tolerance after the last halving is reported
+    /// ([`StepInfo::converged`](crate::system::StepInfo::converged), and the links' stretch
+    /// in [`StepInfo::stretch`](crate::system::StepInfo::stretch)).
+    pub halvings: u8,
+}
+
+impl DirectChain {
+    /// How far a solve may leave a link from its goal, relative to its rest length (0.1%):
+    /// the rest length when inextensible, the balance of the spring and the constraint
+    /// otherwise. Beyond it the solve is halved (see [`halvings`](Self::halvings)).
+    pub const TOLERANCE: (u32, u32) = (1, 1000);
 }
 
 impl Default for DirectChain {
-    /// Four solves of four iterations a step, inextensible.
+    /// Four solves of up to four iterations a step, inextensible, each solve halved up to six
+    /// times.
     fn default() -> Self {
         DirectChain {
             iterations: 4,
             inextensible: true,
             substeps: 4,
+            halvings: 6,
         }
     }
 }
@@ -91,6 +125,10 @@ impl Integrator for DirectChain {
         u32::from(self.substeps.max(1))
     }
 
+    fn holds_links(&self) -> bool {
+        self.inextensible
+    }
+
     fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
         model: &Model<'_, P, Sh, T>,
@@ -106,6 +144,7 @@ impl Integrator for DirectChain {
             forces,
             &mut |_, _| {},
         )
+        .fits
     }
 
     /// Each solve ends with the contacts, so that a link's solve never pulls the rope
@@ -118,26 +157,158 @@ impl Integrator for DirectChain {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> bool {
+    ) -> Solved {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            self.solve_step(model, state, hs, forces)
+            self.solve_halving(model, state, hs, forces)
         };
-        super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
+        if !self.inextensible {
+            return super::split_solves(
+                self.substeps,
+                model,
+                state,
+                (h, lag),
+                forces,
+                touch,
+                solve,
+            );
+        }
+        let mut touch = |state: &mut State<P, Sh>, times| {
+            let before = state.pos;
+            touch(state, times);
+            self.hold_after_contacts(model, state, &before);
+        };
+        super::split_solves(
+            self.substeps,
+            model,
+            state,
+            (h, lag),
+            forces,
+            &mut touch,
+            solve,
+        )
     }
 }
 
 impl DirectChain {
+    /// After the contacts of a solve: where they moved particles (from `before`) and left
+    /// a link beyond the tolerance, the links are brought back, positions only, with each
+    /// particle a contact moved 4 times as heavy, so that the links and the contacts mostly
+    /// agree at the end of the solve (made much heavier, a rope pulled over a box's corner
+    /// by a heavy load would fight the box's faces, stretching further each frame). Costs
+    /// nothing when no contact moved a particle, and a square root a link when one did.
+    fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        before: &Sh::PerParticle<P>,
+    ) {
+        let (x, before) = (Sh::flat(&state.pos), Sh::flat(before));
+        if x == before {
+            return;
+        }
+        let mut w = *model.inv_mass;
+        for ((w, &x), &b) in Sh::flat_mut(&mut w).iter_mut().zip(x).zip(before) {
+            if x != b {
+                *w = *w * P::Scalar::ratio(1, 16);
+            }
+        }
+        let mut links = Links::<P, Sh>::new(model, None);
+        let iterations = self.iterations.max(1);
+        links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations);
+    }
+
+    /// A share `h` of a step in solves of `h / 2^k`: a solve whose links end beyond the
+    /// tolerance is undone and done again as two of half its length, up to
+    /// [`halvings`](Self::halvings) times (while half a solve is longer than the format's
+    /// resolution, and unless its links start off and cannot be brought back). A held
+    /// particle is where its hand is at the end of each solve: its place at the end of the
+    /// share less its velocity times the time left.
+    fn solve_halving<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> Solved {
+        let zero = P::Scalar::ZERO;
+        let w = model.inv_mass();
+        let end = state.pos;
+        let mut report = Solved {
+            fits: true,
+            converged: true,
+        };
+        // `pieces` solves of `piece` make the share; `done` of them are solved.
+        let (mut piece, mut pieces, mut done, mut halved) = (h, 1u16, 0u16, 0u8);
+        while done < pieces {
+            let start = *state;
+            if pieces > 1 {
+                let behind = piece * P::Scalar::from_i16((pieces - done - 1) as i16);
+                let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+                for (((x, &end), &v), &w) in x.iter_mut().zip(Sh::flat(&end)).zip(v).zip(w) {
+                    if w <= zero {
+                        *x = end - v * behind;
+                    }
+                }
+            }
+            let (solved, halvable) = self.solve_step(model, state, piece, forces);
+            let half = piece * P::Scalar::ratio(1, 2);
+            let may_halve = halvable && halved < self.halvings.min(MOST_HALVINGS);
+            if !solved.converged && may_halve && half > tiny_length::<P::Scalar>() {
+                *state = start;
+                (piece, pieces, done, halved) = (half, pieces * 2, done * 2, halved + 1);
+                continue;
+            }
+            report = report.and(solved);
+            done += 1;
+        }
+        report
+    }
+
     fn solve_step<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
         h: P::Scalar,
         forces: &mut F,
-    ) -> bool {
+    ) -> (Solved, bool) {
         let zero = P::Scalar::ZERO;
         let (a, ok) = model.accelerations_at(state, forces, false);
-        let prev = state.pos;
         let w = model.inv_mass();
+        let inv_h = P::Scalar::ONE / h;
+        // `1 / (k h²)` as `(1/h) / (k h)`: in `Q16`, `h²` of a short solve is below the
+        // format's resolution, and a stiffness past its range leaves 0 (held, inextensible).
+        let compliance = |k: P::Scalar| inv_h / (k * h);
+        let mut links = Links::<P, Sh>::new(model, (!self.inextensible).then_some(&compliance));
+        // Held links have converged once their squared stretch is within that of 10⁻⁶ of the
+        // rope's length (springs stretch by design: they take every iteration).
+        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
+        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
+        let iterations = self.iterations.max(1);
+        // Links that start beyond the tolerance (the game put the particles there, or a
+        // solve that did not converge) are brought back first, as positions only, with each
+        // held particle where its hand was at the solve's start: a solve would turn that
+        // correction into velocity, and a shorter solve into more of it. Where that fails (a
+        // straight rope pushed shorter than its length cannot tell which way to bend),
+        // shorter solves could only do worse: the solve is not halved.
+        let mut halvable = true;
+        if self.inextensible {
+            let hands = state.pos;
+            let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+            for ((x, &v), &w) in x.iter_mut().zip(v).zip(w) {
+                if w <= zero {
+                    *x -= v * h;
+                }
+            }
+            halvable = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
+            let x = Sh::flat_mut(&mut state.pos);
+            for ((x, &hand), &w) in x.iter_mut().zip(Sh::flat(&hands)).zip(w) {
+                if w <= zero {
+                    *x = hand;
+                }
+            }
+        }
+        links.measured = None;
+        let prev = state.pos;
         {
             // A held particle stays where its hand put it (it is already at the end of the
             // hand's move); the others move on.
@@ -149,45 +320,8 @@ impl DirectChain {
                 }
             }
         }
-        // Link `i` joins particle `i` to `i + 1`: its rest length, compliance, and whether
-        // it is there to solve (a live spring with a free end).
-        let mut links = Links::<P, Sh> {
-            rest: Sh::filled(zero),
-            compliance: Sh::filled(zero),
-            linked: Sh::filled(false),
-            lambda: Sh::filled(zero),
-            dir: Sh::filled(P::default()),
-            ratio: Sh::filled(zero),
-            solved: Sh::filled(zero),
-            before: Sh::filled(P::default()),
-            length: Sh::filled(zero),
-            inverse: Sh::filled(zero),
-            measured: None,
-        };
-        let inv_h = P::Scalar::ONE / h;
-        // `1 / (k h²)` as `(1/h) / (k h)`: in `Q16`, `h²` of a short solve is below the
-        // format's resolution, and a stiffness past its range leaves 0 (held, inextensible).
-        let compliance = |k: P::Scalar| inv_h / (k * h);
-        model.topology.for_each_spring(|i, j, length, m| {
-            if i.abs_diff(j) == 1 {
-                let i = i.min(j);
-                Sh::flat_mut(&mut links.rest)[i] = length;
-                Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
-                if !self.inextensible && m.stiffness > zero {
-                    Sh::flat_mut(&mut links.compliance)[i] = compliance(m.stiffness);
-                }
-            }
-        });
-        // Held links have converged once their squared stretch is within that of 10⁻⁶ of the
-        // rope's length (springs stretch by design: they take every iteration).
-        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
-        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
-        let iterations = self.iterations.max(1);
-        for iteration in 1..=iterations {
-            // The last of several iterations starts near the solution, where a Newton step
-            // lowers the stretch: it is taken whole, unmeasured.
-            let whole = iteration > 1 && iteration == iterations;
-            links.solve(Sh::flat_mut(&mut state.pos), w, whole);
+        for _ in 0..iterations {
+            links.solve(Sh::flat_mut(&mut state.pos), w);
             if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
             } else if self.inextensible
@@ -196,13 +330,18 @@ impl DirectChain {
                 break;
             }
         }
+        let converged = links.within(Sh::flat(&state.pos), DirectChain::TOLERANCE);
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
         for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
             if w > zero {
                 *v = (x - p) * inv_h;
             }
         }
-        ok
+        let solved = Solved {
+            fits: ok,
+            converged,
+        };
+        (solved, halvable)
     }
 }
 
@@ -227,6 +366,10 @@ struct Links<P: Point, Sh: Shape> {
     measured: Option<P::Scalar>,
 }
 
+/// Most times a solve is halved, whatever [`DirectChain::halvings`] says: 4 096 solves a
+/// share.
+const MOST_HALVINGS: u8 = 12;
+
 /// Most times a Newton step is halved before it is taken as it is.
 const MAX_HALVINGS: u8 = 4;
 
@@ -250,11 +393,92 @@ fn measure<P: Point>(
 }
 
 impl<P: Point, Sh: Shape> Links<P, Sh> {
+    /// The links of `model`'s springs from particle `i` to `i + 1` that have a free end,
+    /// each with its spring's `compliance(k)` when given (inextensible without).
+    fn new<T: Topology<P::Scalar>>(
+        model: &Model<'_, P, Sh, T>,
+        compliance: Option<&dyn Fn(P::Scalar) -> P::Scalar>,
+    ) -> Self {
+        let zero = P::Scalar::ZERO;
+        let w = model.inv_mass();
+        let mut links = Links::<P, Sh> {
+            rest: Sh::filled(zero),
+            compliance: Sh::filled(zero),
+            linked: Sh::filled(false),
+            lambda: Sh::filled(zero),
+            dir: Sh::filled(P::default()),
+            ratio: Sh::filled(zero),
+            solved: Sh::filled(zero),
+            before: Sh::filled(P::default()),
+            length: Sh::filled(zero),
+            inverse: Sh::filled(zero),
+            measured: None,
+        };
+        model.topology.for_each_spring(|i, j, length, m| {
+            if i.abs_diff(j) == 1 {
+                let i = i.min(j);
+                Sh::flat_mut(&mut links.rest)[i] = length;
+                Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
+                if let (Some(compliance), true) = (compliance, m.stiffness > zero) {
+                    Sh::flat_mut(&mut links.compliance)[i] = compliance(m.stiffness);
+                }
+            }
+        });
+        links
+    }
+
+    /// Moves the particles (positions only, by inverse masses `w`) until every link is
+    /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations;
+    /// whether they got there. Does nothing when they are there already (a square root a
+    /// link to find out).
+    fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> bool {
+        if self.within(x, DirectChain::TOLERANCE) {
+            return true;
+        }
+        let rest: P::Scalar = Sh::flat(&self.rest)
+            .iter()
+            .fold(P::Scalar::ZERO, |sum, &l| sum + l);
+        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
+        for _ in 0..iterations.saturating_mul(4) {
+            self.solve(x, w);
+            if self.measured.is_some_and(|r| r <= tolerance * tolerance) {
+                break;
+            }
+        }
+        Sh::flat_mut(&mut self.lambda).fill(P::Scalar::ZERO);
+        self.within(x, DirectChain::TOLERANCE)
+    }
+
+    /// Whether every link at `x` is within `tolerance` (a fraction, as
+    /// [`DirectChain::TOLERANCE`]) of its goal: `|l − rest + α̃ λ| ≤ rest · tolerance` (its
+    /// rest length when inextensible). Measures the links unless the last iteration did. A
+    /// multiplication a link more.
+    fn within(&mut self, x: &[P], (n, d): (u32, u32)) -> bool {
+        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
+        let (length, inverse) = (
+            Sh::flat_mut(&mut self.length),
+            Sh::flat_mut(&mut self.inverse),
+        );
+        if self.measured.is_none() {
+            self.measured = Some(measure(x, rest, linked, (length, inverse)));
+        }
+        let tolerance = P::Scalar::ratio(n, d);
+        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
+        // A spring's multiplier is known to the format's resolution only: 16 units of it
+        // (in `Q16`, 0.02% of a 1 m link under a compliance of 1) are allowed for.
+        let rounding = tiny_length::<P::Scalar>();
+        (0..x.len().saturating_sub(1)).all(|i| {
+            let off = length[i] - rest[i] + compliance[i] * lambda[i];
+            !linked[i] || off.abs() <= rest[i] * tolerance + compliance[i] * rounding
+        })
+    }
+
     /// One Newton iteration: the links' tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` at
-    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it:
-    /// with `whole`, by the whole step, unmeasured; otherwise by the line search. A link too
-    /// short to have a direction sits the iteration out.
-    fn solve(&mut self, x: &mut [P], w: &[P::Scalar], whole: bool) {
+    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it,
+    /// the whole step or, while that would not lower the links' squared stretch, half of it
+    /// and so on (a line search). A link too short to have a direction sits the iteration
+    /// out.
+    fn solve(&mut self, x: &mut [P], w: &[P::Scalar]) {
         let zero = P::Scalar::ZERO;
         let (rest, compliance) = (Sh::flat(&self.rest), Sh::flat(&self.compliance));
         let (linked, lambda) = (Sh::flat(&self.linked), Sh::flat_mut(&mut self.lambda));
@@ -322,9 +546,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             solved[i] -= ratio[i] * solved[i + 1];
         }
         let before = Sh::flat_mut(&mut self.before);
-        if !whole {
-            before.copy_from_slice(x);
-        }
+        before.copy_from_slice(x);
         for halving in 0..=MAX_HALVINGS {
             // Each particle moves by the difference of its two links' pulls.
             let mut pull = P::default();
@@ -338,10 +560,6 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                     x[i] += (pull - out) * w[i];
                 }
                 pull = out;
-            }
-            if whole {
-                self.measured = None;
-                return;
             }
             let after = measure(x, rest, linked, (length, inverse));
             self.measured = Some(after);

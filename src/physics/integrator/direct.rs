@@ -2,7 +2,7 @@
 //! back-substitution an iteration, whatever the stiffness (projective dynamics).
 
 use super::banded::{Factor, Springs};
-use super::{Integrator, Model, State, sealed, tiny_length};
+use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Spread, Topology};
@@ -156,6 +156,7 @@ impl Integrator for DirectSprings {
         let memory = &mut Self::memory();
         let times = (h, P::Scalar::ZERO);
         self.substep_touching(model, state, memory, times, forces, &mut |_, _| {})
+            .fits
     }
 
     /// Each solve ends with the contacts.
@@ -167,12 +168,16 @@ impl Integrator for DirectSprings {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> bool {
+    ) -> Solved {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            if self.keep_energy {
+            let fits = if self.keep_energy {
                 self.solve_keeping(model, state, memory, hs, forces)
             } else {
                 self.solve(model, state, memory, hs, forces, None)
+            };
+            Solved {
+                fits,
+                converged: true,
             }
         };
         super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
@@ -278,7 +283,7 @@ impl DirectSprings {
         // The motion's energy at the start, less what the springs' damping takes over the
         // solve, plus what earlier solves owe; where the particles started.
         let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
-        let e0 = model.energy_less_damping(x, v, h) + memory.owed;
+        let e0 = model.energy_less_damping(x, v, h, false) + memory.owed;
         let x0 = state.pos;
         let mut pushes = Sh::filled(P::default());
         let ok = self.solve(model, state, memory, h, forces, Some(&mut pushes));
@@ -454,7 +459,7 @@ fn give_back<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
             kinetic += half * m * v.dot(v);
         }
     }
-    let missing = e0 + work - model.energy(x, v);
+    let missing = e0 + work - model.energy(x, v, false);
     if !(missing.is_finite() && kinetic > zero) {
         return if missing.is_finite() { missing } else { zero };
     }

@@ -98,7 +98,8 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
     /// [`substep`](Self::substep) with the system's `memory`, then `touch(state, (h, lag))`
     /// (the contacts of a step that resolves them, `lag` seconds before the frame ends). A
     /// method that splits its substep into shorter solves resolves the contacts after each
-    /// of them, with their own length and lag.
+    /// of them, with their own length and lag. Returns whether the forces fitted and whether
+    /// an iterating solve reached its tolerance ([`Solved`]).
     #[allow(clippy::too_many_arguments)]
     fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
@@ -108,11 +109,44 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> bool {
+    ) -> Solved {
         let _ = memory;
         let fits = self.substep(model, state, h, forces);
         touch(state, (h, lag));
-        fits
+        Solved {
+            fits,
+            converged: true,
+        }
+    }
+
+    /// `true` when the method holds each link of a chain (the spring from particle `i` to
+    /// `i + 1`) at its rest length as a constraint rather than a spring: an inextensible
+    /// [`DirectChain`]. Such links store no energy
+    /// ([`MassSpring::energy`](crate::MassSpring::energy)), and a step measures how far
+    /// they ended from their length ([`StepInfo::stretch`](crate::system::StepInfo::stretch)).
+    fn holds_links(&self) -> bool {
+        false
+    }
+}
+
+/// What a substep did, for its step's [`StepInfo`](crate::system::StepInfo).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Solved {
+    /// `false` when a `Q16` force saturated on the way.
+    pub fits: bool,
+    /// `false` when an iterating solve ended beyond its tolerance after its last iteration
+    /// and its last split (see [`DirectChain`]); `true` for methods that do not iterate.
+    pub converged: bool,
+}
+
+impl Solved {
+    /// Both substeps' reports: each flag holds only if it held in both.
+    #[must_use]
+    pub fn and(self, other: Solved) -> Solved {
+        Solved {
+            fits: self.fits & other.fits,
+            converged: self.converged & other.converged,
+        }
     }
 }
 
@@ -134,8 +168,8 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     (h, lag): (P::Scalar, P::Scalar),
     forces: &mut F,
     touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> bool,
-) -> bool {
+    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> Solved,
+) -> Solved {
     let n = substeps.max(1);
     if n == 1 && lag == P::Scalar::ZERO {
         // One solve at the frame's end: the held particles are where their hands put them
@@ -152,7 +186,10 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     };
     let end = state.pos;
     let w = model.inv_mass();
-    let mut ok = true;
+    let mut ok = Solved {
+        fits: true,
+        converged: true,
+    };
     for left in (0..n).rev() {
         let behind = lag + hs * P::Scalar::from_i16(i16::from(left));
         let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
@@ -161,7 +198,7 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
                 *x = end - v * behind;
             }
         }
-        ok &= solve(state, hs, forces);
+        ok = ok.and(solve(state, hs, forces));
         touch(state, (hs, behind));
     }
     let x = Sh::flat_mut(&mut state.pos);
@@ -260,7 +297,7 @@ impl Integrator for AnyIntegrator {
         times: (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> bool {
+    ) -> Solved {
         if let AnyIntegrator::DirectSprings(m) = *self {
             return m.substep_touching(model, state, memory, times, forces, touch);
         }
@@ -268,5 +305,9 @@ impl Integrator for AnyIntegrator {
             let own = &mut memory_of::<_, P::Scalar, Sh>(&m);
             m.substep_touching(model, state, own, times, forces, touch)
         })
+    }
+
+    fn holds_links(&self) -> bool {
+        with_method!(*self, m => m.holds_links())
     }
 }

@@ -65,18 +65,25 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
     }
 
     /// The energy of the motion at `(x, v)`: each free particle's kinetic and gravitational
-    /// (relative to the origin) energy, and every spring's `½ k (l − rest)²`. A held particle
-    /// counts as infinitely heavy and still. A division a particle and a square root a
-    /// spring; may saturate in `Q16`, and overflow to ±∞ in floats past the format's range.
-    pub(crate) fn energy(&self, x: &[P], v: &[P]) -> P::Scalar {
-        self.energy_less_damping(x, v, P::Scalar::ZERO)
+    /// (relative to the origin) energy, and every spring's `½ k (l − rest)²` but the links'
+    /// (from particle `i` to `i + 1`) when `held_links` (constraints store none). A held
+    /// particle counts as infinitely heavy and still. A division a particle and a square root
+    /// a spring; may saturate in `Q16`, and overflow to ±∞ in floats past the format's range.
+    pub(crate) fn energy(&self, x: &[P], v: &[P], held_links: bool) -> P::Scalar {
+        self.energy_less_damping(x, v, P::Scalar::ZERO, held_links)
     }
 
     /// [`energy`](Self::energy) less what the springs' damping takes over a solve of `h`
     /// from `(x, v)`: each spring's `c (dl/dt)² h`, its `c` clamped as
     /// [`DirectSprings`](super::DirectSprings) clamps it (`c ≤ 1 / (h (wa + wb))`); in the
     /// same pass over the springs.
-    pub(crate) fn energy_less_damping(&self, x: &[P], v: &[P], h: P::Scalar) -> P::Scalar {
+    pub(crate) fn energy_less_damping(
+        &self,
+        x: &[P],
+        v: &[P],
+        h: P::Scalar,
+        held_links: bool,
+    ) -> P::Scalar {
         let (zero, one, half) = (P::Scalar::ZERO, P::Scalar::ONE, P::Scalar::ratio(1, 2));
         let w = self.inv_mass();
         let mut e = zero;
@@ -90,6 +97,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
             let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else {
                 return;
             };
+            if held_links && a.abs_diff(b) == 1 {
+                return;
+            }
             let d = xb - xa;
             let l = d.length();
             let s = l - rest;
