@@ -136,6 +136,19 @@ impl std::error::Error for Error {}
 pub(crate) const POSITIVE: &str = "finite and > 0";
 /// What a finite, non-negative parameter must be.
 pub(crate) const NON_NEGATIVE: &str = "finite and >= 0";
+/// What a `Q16` parameter that saturated must be instead.
+pub(crate) const SATURATED: &str =
+    "within Q16's range (it saturated: Q16 holds -32 768 to 32 767.99998)";
+
+/// The expectation a parameter `x` missed: [`SATURATED`] for a `Q16` value at the format's
+/// limit (so the message says why), else `otherwise`.
+fn missed<S: crate::Scalar>(x: S, otherwise: &'static str) -> &'static str {
+    if S::FIXED_POINT && !x.is_finite() {
+        SATURATED
+    } else {
+        otherwise
+    }
+}
 
 /// [`Error::InvalidParameter`] for `name`, which must be `expected`.
 pub(crate) const fn invalid(name: &'static str, expected: &'static str) -> Error {
@@ -187,7 +200,7 @@ pub(crate) fn check_positive<S: crate::Scalar>(x: S, name: &'static str) -> Resu
     if x > S::ZERO && x.is_finite() {
         Ok(x)
     } else {
-        Err(invalid(name, POSITIVE))
+        Err(invalid(name, missed(x, POSITIVE)))
     }
 }
 
@@ -196,7 +209,7 @@ pub(crate) fn check_non_negative<S: crate::Scalar>(x: S, name: &'static str) -> 
     if x >= S::ZERO && x.is_finite() {
         Ok(x)
     } else {
-        Err(invalid(name, NON_NEGATIVE))
+        Err(invalid(name, missed(x, NON_NEGATIVE)))
     }
 }
 

@@ -105,7 +105,10 @@ impl<S: Scalar, const K: usize, const N: usize> SurfaceTable<S, K, N> {
     fn build(smoothing: Smoothing, count: usize, closed: bool) -> Result<Self, Error> {
         const { assert!(K >= 2 && K <= 255, "a surface row has 2 to 255 particles") };
         if !(2..=N).contains(&count) {
-            return Err(invalid("count", "from 2 to the table's particle count"));
+            return Err(invalid(
+                "count",
+                "from 2 to the table's sample capacity (its second size, N)",
+            ));
         }
         let spans = match smoothing {
             _ if closed => K,

@@ -194,8 +194,9 @@ impl Mul for Q16 {
 impl Div for Q16 {
     type Output = Q16;
     /// Quotient rounded to nearest (ties away from zero), saturated; `x / 0` saturates by the
-    /// sign of `x`. A 64-bit division where the core has one, a 32-bit long division
-    /// elsewhere; the results are identical bit for bit.
+    /// sign of `x`. A 64-bit division where the core has one; elsewhere (a Cortex-M0) two
+    /// 16-bit quotient digits in 32-bit registers, each estimated from a 128-entry table of
+    /// reciprocals and made exact by its remainder; the results are identical bit for bit.
     #[inline]
     fn div(self, rhs: Q16) -> Q16 {
         #[cfg(target_pointer_width = "64")]

@@ -13,6 +13,10 @@ use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 ///
 /// Arithmetic operators never panic. Floats follow IEEE 754; `Q16` saturates at its range
 /// and reports saturation through [`is_finite`](Scalar::is_finite).
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a dunas `Scalar` in this build",
+    note = "`f32` and `f64` are `Scalar`s with the `std` or the `libm` feature (a bare-metal build always has `libm`); `Q16` with the `fixed` feature"
+)]
 pub trait Scalar:
     Copy
     + Default

@@ -225,3 +225,54 @@ fn an_inextensible_chain_stores_no_energy_in_its_links() {
         soft.energy()
     );
 }
+
+/// Errors say what their docs say: a NaN arc length is `NonFinite` named "arc length"; a
+/// surface table's count names its sample capacity; a `Q16` stiffness that saturated says
+/// so and gives the format's range.
+#[test]
+fn errors_say_what_their_docs_say() {
+    use dunas::spline_rope::SplineRope;
+    use dunas::surface::SurfaceTable;
+    let material = Material {
+        stiffness: 100.0,
+        damping: 0.0,
+    };
+    let settings = Settings::<Vec2<f64>>::default();
+    let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0));
+    let mut rope: SplineRope<Vec2<f64>, 6> =
+        SplineRope::new(start, end, 1.0, material, settings).unwrap();
+    assert_eq!(
+        rope.apply_force(f64::NAN, Vec2::new(1.0, 0.0)),
+        Err(Error::NonFinite { name: "arc length" })
+    );
+    let Err(Error::InvalidParameter { name, expected }) =
+        SurfaceTable::<f32, 10, 16>::new(Smoothing::CatmullRom, 37)
+    else {
+        panic!("37 samples in a table of 16")
+    };
+    assert_eq!(name, "count");
+    assert!(expected.contains("sample capacity"), "{expected}");
+    #[cfg(feature = "fixed")]
+    {
+        let q = Q16::from_f64;
+        let settings = Settings {
+            gravity: Vec2::new(q(0.0), q(-9.81)),
+            ..Settings::default()
+        };
+        let stiff = Material {
+            stiffness: q(1e12),
+            damping: q(0.0),
+        };
+        let (start, end) = (Vec2::new(q(0.0), q(0.0)), Vec2::new(q(1.0), q(0.0)));
+        let Err(Error::InvalidParameter { name, expected }) =
+            Rope::<Vec2<Q16>, 8>::new(start, end, q(1.0), stiff, settings)
+        else {
+            panic!("a saturated stiffness")
+        };
+        assert_eq!(name, "stiffness");
+        assert!(
+            expected.contains("saturated") && expected.contains("32 767"),
+            "{expected}"
+        );
+    }
+}

@@ -693,8 +693,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// a contact), through the basis weights there.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for `f`; [`Error::InvalidParameter`] for
-    /// a non-finite `s`.
+    /// [`Error::NonFinite`] / [`Error::OutOfRange`] for `f`; [`Error::NonFinite`] (named
+    /// `"arc length"`) for a non-finite `s`.
     pub fn apply_force(&mut self, s: P::Scalar, f: P) -> Result<(), Error> {
         check_points(&[f], "force")?;
         if !s.is_finite() {

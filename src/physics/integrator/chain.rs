@@ -53,7 +53,7 @@ use crate::{Point, Scalar};
 ///   flagged unconverged in 7 frames of 240; a 70 kg player on a 2 kg, 12-particle rope
 ///   at one solve of two iterations a frame: within 0.1%, no frame flagged;
 /// - one step of 1 s under that player: within 0.1%; one of 10 s: refused;
-/// - an undamped released rope keeps 18% of its swing's energy over 10 s without a bob and
+/// - an undamped released rope keeps 17% of its swing's energy over 10 s without a bob and
 ///   40% to 48% with one of 1 to 10 times its mass, against 96% to 97% for symplectic
 ///   Euler and Verlet: a solve removes the velocity that stretches a link, and a whipping
 ///   chain keeps feeding such velocity.
