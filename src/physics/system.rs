@@ -7,7 +7,7 @@ use crate::error::{
 };
 use crate::physics::body::Body;
 use crate::physics::force::ForceField;
-use crate::physics::integrator::{DirectChain, Integrator, Model, Solved, State, SymplecticEuler};
+use crate::physics::integrator::{Integrator, Model, Solved, State, SymplecticEuler};
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
@@ -40,7 +40,7 @@ pub struct StepInfo<S> {
     pub snapped: u16,
     /// `false` when the step did not keep what its method promises: an iterating solve
     /// ended beyond its tolerance after its last iteration and its last halving, or a link
-    /// that the method holds ended more than [`DirectChain::TOLERANCE`] (0.1%) from its
+    /// that the method holds ended more than [`DirectChain::TOLERANCE`](crate::integrator::DirectChain::TOLERANCE) (0.1%) from its
     /// length, after the contacts (see [`stretch`](Self::stretch)). The step is kept. `true`
     /// for methods that neither iterate to a tolerance nor hold links.
     pub converged: bool,
@@ -560,7 +560,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
-        let (solved, stretch) = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
+        let solved = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -572,7 +572,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             saturated: !solved.fits,
             snapped: self.snap(),
             converged: solved.converged,
-            stretch,
+            stretch: solved.stretch,
         })
     }
 
@@ -589,7 +589,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
-        let (solved, stretch) = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
+        let solved = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
             simulated: h,
@@ -597,7 +597,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             saturated: !solved.fits,
             snapped: self.snap(),
             converged: solved.converged,
-            stretch,
+            stretch: solved.stretch,
         })
     }
 
@@ -608,20 +608,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         u16::try_from(snapped).unwrap_or(u16::MAX)
     }
 
-    /// `n` substeps of `h`, undone if the result is not sane; what the substeps reported,
-    /// and the held links' stretch ([`StepInfo::stretch`]).
+    /// `n` substeps of `h`, undone if the result is not sane (a held link's stretch past
+    /// [`MAX_STRETCH`] included); what the substeps reported.
     fn substeps_or_undo<F: ForceField<P>>(
         &mut self,
         n: u16,
         h: P::Scalar,
         forces: &mut F,
         resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
-    ) -> Result<(Solved, P::Scalar), Error> {
+    ) -> Result<Solved<P::Scalar>, Error> {
         let saved = (self.state, self.time);
-        let mut solved = Solved {
-            fits: true,
-            converged: true,
-        };
+        let mut solved = Solved::plain(true);
         for k in 1..=n {
             let model = Model {
                 inv_mass: &self.inv_mass,
@@ -632,7 +629,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             };
             let lag = h * P::Scalar::from_i16((n - k) as i16);
             let inv_mass = &self.inv_mass;
-            solved = solved.and(self.settings.integrator.substep_touching(
+            solved = solved.then(self.settings.integrator.substep_touching(
                 &model,
                 &mut self.state,
                 &mut self.memory,
@@ -645,38 +642,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if !solved.fits {
             self.calm();
         }
-        let stretch = if self.settings.integrator.holds_links() {
-            self.link_stretch()
-        } else {
-            P::Scalar::ZERO
-        };
         let (most, of) = MAX_STRETCH;
-        let (off, whole) = DirectChain::TOLERANCE;
-        solved.converged &= stretch <= P::Scalar::ratio(off, whole);
-        if self.settle(Sh::flat(&saved.0.pos)) && stretch <= P::Scalar::ratio(most, of) {
-            Ok((solved, stretch))
+        if self.settle(Sh::flat(&saved.0.pos)) && solved.stretch <= P::Scalar::ratio(most, of) {
+            Ok(solved)
         } else {
             (self.state, self.time) = saved;
             Err(Error::Diverged)
         }
-    }
-
-    /// The largest `|length − rest| / rest` of a link (a spring from particle `i` to
-    /// `i + 1`): a square root a link and one division.
-    fn link_stretch(&self) -> P::Scalar {
-        let x = self.positions();
-        // The largest ratio as its numerator and denominator, compared by products.
-        let (mut off, mut of) = (P::Scalar::ZERO, P::Scalar::ONE);
-        self.topology.for_each_spring(|a, b, rest, _| {
-            if let (1, Some(&xa), Some(&xb)) = (a.abs_diff(b), x.get(a), x.get(b)) {
-                let o = (xb - xa).length() - rest;
-                let o = o.abs();
-                if !(o * of <= off * rest) {
-                    (off, of) = (o, rest);
-                }
-            }
-        });
-        off / of
     }
 
     /// After a `Q16` step whose forces saturated (a hand yanked far past what the rope can

@@ -157,7 +157,7 @@ impl Integrator for DirectChain {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> Solved {
+    ) -> Solved<P::Scalar> {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
             self.solve_halving(model, state, hs, forces)
         };
@@ -172,12 +172,14 @@ impl Integrator for DirectChain {
                 solve,
             );
         }
+        // The stretch the last solve's contacts left, when they moved a particle.
+        let mut after_contacts = None;
         let mut touch = |state: &mut State<P, Sh>, times| {
             let before = state.pos;
             touch(state, times);
-            self.hold_after_contacts(model, state, &before);
+            after_contacts = self.hold_after_contacts(model, state, &before);
         };
-        super::split_solves(
+        let mut solved = super::split_solves(
             self.substeps,
             model,
             state,
@@ -185,7 +187,13 @@ impl Integrator for DirectChain {
             forces,
             &mut touch,
             solve,
-        )
+        );
+        if let Some(stretch) = after_contacts {
+            let (off, of) = DirectChain::TOLERANCE;
+            solved.converged &= stretch <= P::Scalar::ratio(off, of);
+            solved.stretch = stretch;
+        }
+        solved
     }
 }
 
@@ -194,27 +202,28 @@ impl DirectChain {
     /// a link beyond the tolerance, the links are brought back, positions only, with each
     /// particle a contact moved 4 times as heavy, so that the links and the contacts mostly
     /// agree at the end of the solve (made much heavier, a rope pulled over a box's corner
-    /// by a heavy load would fight the box's faces, stretching further each frame). Costs
-    /// nothing when no contact moved a particle, and a square root a link when one did.
+    /// by a heavy load would fight the box's faces, stretching further each frame); the
+    /// links' stretch then, or `None` when no contact moved a particle (at no cost). A
+    /// square root a link when one did.
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
         before: &Sh::PerParticle<P>,
-    ) {
+    ) -> Option<P::Scalar> {
         let (x, before) = (Sh::flat(&state.pos), Sh::flat(before));
         if x == before {
-            return;
+            return None;
         }
         let mut w = *model.inv_mass;
         for ((w, &x), &b) in Sh::flat_mut(&mut w).iter_mut().zip(x).zip(before) {
             if x != b {
-                *w = *w * P::Scalar::ratio(1, 16);
+                *w = *w * P::Scalar::ratio(1, 4);
             }
         }
         let mut links = Links::<P, Sh>::new(model, None);
         let iterations = self.iterations.max(1);
-        links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations);
+        Some(links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations))
     }
 
     /// A share `h` of a step in solves of `h / 2^k`: a solve whose links end beyond the
@@ -229,14 +238,11 @@ impl DirectChain {
         state: &mut State<P, Sh>,
         h: P::Scalar,
         forces: &mut F,
-    ) -> Solved {
+    ) -> Solved<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let w = model.inv_mass();
         let end = state.pos;
-        let mut report = Solved {
-            fits: true,
-            converged: true,
-        };
+        let mut report = Solved::plain(true);
         // `pieces` solves of `piece` make the share; `done` of them are solved.
         let (mut piece, mut pieces, mut done, mut halved) = (h, 1u16, 0u16, 0u8);
         while done < pieces {
@@ -258,7 +264,7 @@ impl DirectChain {
                 (piece, pieces, done, halved) = (half, pieces * 2, done * 2, halved + 1);
                 continue;
             }
-            report = report.and(solved);
+            report = report.then(solved);
             done += 1;
         }
         report
@@ -270,7 +276,7 @@ impl DirectChain {
         state: &mut State<P, Sh>,
         h: P::Scalar,
         forces: &mut F,
-    ) -> (Solved, bool) {
+    ) -> (Solved<P::Scalar>, bool) {
         let zero = P::Scalar::ZERO;
         let (a, ok) = model.accelerations_at(state, forces, false);
         let w = model.inv_mass();
@@ -299,7 +305,8 @@ impl DirectChain {
                     *x -= v * h;
                 }
             }
-            halvable = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
+            let off = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
+            halvable = off <= tolerance_of(DirectChain::TOLERANCE);
             let x = Sh::flat_mut(&mut state.pos);
             for ((x, &hand), &w) in x.iter_mut().zip(Sh::flat(&hands)).zip(w) {
                 if w <= zero {
@@ -330,7 +337,8 @@ impl DirectChain {
                 break;
             }
         }
-        let converged = links.within(Sh::flat(&state.pos), DirectChain::TOLERANCE);
+        let off = links.off(Sh::flat(&state.pos));
+        let converged = off <= tolerance_of(DirectChain::TOLERANCE);
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
         for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
             if w > zero {
@@ -340,6 +348,7 @@ impl DirectChain {
         let solved = Solved {
             fits: ok,
             converged,
+            stretch: if self.inextensible { off } else { zero },
         };
         (solved, halvable)
     }
@@ -364,6 +373,11 @@ struct Links<P: Point, Sh: Shape> {
     length: Sh::PerParticle<P::Scalar>,
     inverse: Sh::PerParticle<P::Scalar>,
     measured: Option<P::Scalar>,
+}
+
+/// A tolerance given as `(numerator, denominator)`, in the format.
+fn tolerance_of<S: Scalar>((n, d): (u32, u32)) -> S {
+    S::ratio(n, d)
 }
 
 /// Most times a solve is halved, whatever [`DirectChain::halvings`] says: 4 096 solves a
@@ -427,13 +441,43 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
         links
     }
 
-    /// Moves the particles (positions only, by inverse masses `w`) until every link is
-    /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations;
-    /// whether they got there. Does nothing when they are there already (a square root a
-    /// link to find out).
-    fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> bool {
-        if self.within(x, DirectChain::TOLERANCE) {
-            return true;
+    /// The largest distance of a link at `x` from its goal, relative to its rest length:
+    /// `|l − rest + α̃ λ| / rest` (`|l − rest| / rest` when inextensible; a spring's
+    /// multiplier is known to the format's resolution only, so 16 units of it are allowed
+    /// for: in `Q16`, 0.02% of a 1 m link under a compliance of 1). Measures the links
+    /// unless the last iteration did. A multiplication a link and one division.
+    fn off(&mut self, x: &[P]) -> P::Scalar {
+        let zero = P::Scalar::ZERO;
+        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
+        let (length, inverse) = (
+            Sh::flat_mut(&mut self.length),
+            Sh::flat_mut(&mut self.inverse),
+        );
+        if self.measured.is_none() {
+            self.measured = Some(measure(x, rest, linked, (length, inverse)));
+        }
+        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
+        let rounding = tiny_length::<P::Scalar>();
+        // The largest ratio as its numerator and denominator, compared by products.
+        let (mut most, mut of) = (zero, P::Scalar::ONE);
+        for i in (0..x.len().saturating_sub(1)).filter(|&i| linked[i]) {
+            let off = (length[i] - rest[i] + compliance[i] * lambda[i]).abs();
+            let off = (off - compliance[i] * rounding).max(zero);
+            if off * of > most * rest[i] {
+                (most, of) = (off, rest[i]);
+            }
+        }
+        most / of
+    }
+
+    /// Moves the particles (positions only, by inverse masses `w`) towards every link
+    /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations; how
+    /// far off they end ([`off`](Self::off)). Does nothing when they are within already (a
+    /// square root a link to find out).
+    fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> P::Scalar {
+        let off = self.off(x);
+        if off <= tolerance_of(DirectChain::TOLERANCE) {
+            return off;
         }
         let rest: P::Scalar = Sh::flat(&self.rest)
             .iter()
@@ -446,31 +490,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             }
         }
         Sh::flat_mut(&mut self.lambda).fill(P::Scalar::ZERO);
-        self.within(x, DirectChain::TOLERANCE)
-    }
-
-    /// Whether every link at `x` is within `tolerance` (a fraction, as
-    /// [`DirectChain::TOLERANCE`]) of its goal: `|l − rest + α̃ λ| ≤ rest · tolerance` (its
-    /// rest length when inextensible). Measures the links unless the last iteration did. A
-    /// multiplication a link more.
-    fn within(&mut self, x: &[P], (n, d): (u32, u32)) -> bool {
-        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
-        let (length, inverse) = (
-            Sh::flat_mut(&mut self.length),
-            Sh::flat_mut(&mut self.inverse),
-        );
-        if self.measured.is_none() {
-            self.measured = Some(measure(x, rest, linked, (length, inverse)));
-        }
-        let tolerance = P::Scalar::ratio(n, d);
-        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
-        // A spring's multiplier is known to the format's resolution only: 16 units of it
-        // (in `Q16`, 0.02% of a 1 m link under a compliance of 1) are allowed for.
-        let rounding = tiny_length::<P::Scalar>();
-        (0..x.len().saturating_sub(1)).all(|i| {
-            let off = length[i] - rest[i] + compliance[i] * lambda[i];
-            !linked[i] || off.abs() <= rest[i] * tolerance + compliance[i] * rounding
-        })
+        self.off(x)
     }
 
     /// One Newton iteration: the links' tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` at

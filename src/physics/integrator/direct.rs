@@ -168,17 +168,13 @@ impl Integrator for DirectSprings {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> Solved {
+    ) -> Solved<P::Scalar> {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            let fits = if self.keep_energy {
+            Solved::plain(if self.keep_energy {
                 self.solve_keeping(model, state, memory, hs, forces)
             } else {
                 self.solve(model, state, memory, hs, forces, None)
-            };
-            Solved {
-                fits,
-                converged: true,
-            }
+            })
         };
         super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
     }

@@ -98,8 +98,8 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
     /// [`substep`](Self::substep) with the system's `memory`, then `touch(state, (h, lag))`
     /// (the contacts of a step that resolves them, `lag` seconds before the frame ends). A
     /// method that splits its substep into shorter solves resolves the contacts after each
-    /// of them, with their own length and lag. Returns whether the forces fitted and whether
-    /// an iterating solve reached its tolerance ([`Solved`]).
+    /// of them, with their own length and lag. Returns whether the forces fitted, whether
+    /// an iterating solve reached its tolerance and the held links' stretch ([`Solved`]).
     #[allow(clippy::too_many_arguments)]
     fn substep_touching<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
@@ -109,14 +109,11 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         (h, lag): (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> Solved {
+    ) -> Solved<P::Scalar> {
         let _ = memory;
         let fits = self.substep(model, state, h, forces);
         touch(state, (h, lag));
-        Solved {
-            fits,
-            converged: true,
-        }
+        Solved::plain(fits)
     }
 
     /// `true` when the method holds each link of a chain (the spring from particle `i` to
@@ -130,22 +127,38 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
 }
 
 /// What a substep did, for its step's [`StepInfo`](crate::system::StepInfo).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Solved {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solved<S> {
     /// `false` when a `Q16` force saturated on the way.
     pub fits: bool,
     /// `false` when an iterating solve ended beyond its tolerance after its last iteration
-    /// and its last split (see [`DirectChain`]); `true` for methods that do not iterate.
+    /// and its last halving, or a held link ended beyond it (see [`DirectChain`]); `true`
+    /// for methods that do not iterate.
     pub converged: bool,
+    /// For a method that [holds its links](Integrator::holds_links): the largest
+    /// `|length − rest| / rest` of a link at the substep's end, after its contacts; 0
+    /// otherwise.
+    pub stretch: S,
 }
 
-impl Solved {
-    /// Both substeps' reports: each flag holds only if it held in both.
-    #[must_use]
-    pub fn and(self, other: Solved) -> Solved {
+impl<S: Scalar> Solved<S> {
+    /// A substep that did not iterate: `fits`, converged, no stretch.
+    pub fn plain(fits: bool) -> Self {
         Solved {
-            fits: self.fits & other.fits,
-            converged: self.converged & other.converged,
+            fits,
+            converged: true,
+            stretch: S::ZERO,
+        }
+    }
+
+    /// This substep and then `later`: each flag holds only if it held in both; the stretch
+    /// is `later`'s, the one at the end.
+    #[must_use]
+    pub fn then(self, later: Solved<S>) -> Solved<S> {
+        Solved {
+            fits: self.fits & later.fits,
+            converged: self.converged & later.converged,
+            stretch: later.stretch,
         }
     }
 }
@@ -168,8 +181,8 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     (h, lag): (P::Scalar, P::Scalar),
     forces: &mut F,
     touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> Solved,
-) -> Solved {
+    mut solve: impl FnMut(&mut State<P, Sh>, P::Scalar, &mut F) -> Solved<P::Scalar>,
+) -> Solved<P::Scalar> {
     let n = substeps.max(1);
     if n == 1 && lag == P::Scalar::ZERO {
         // One solve at the frame's end: the held particles are where their hands put them
@@ -186,10 +199,7 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
     };
     let end = state.pos;
     let w = model.inv_mass();
-    let mut ok = Solved {
-        fits: true,
-        converged: true,
-    };
+    let mut ok = Solved::plain(true);
     for left in (0..n).rev() {
         let behind = lag + hs * P::Scalar::from_i16(i16::from(left));
         let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
@@ -198,7 +208,7 @@ fn split_solves<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
                 *x = end - v * behind;
             }
         }
-        ok = ok.and(solve(state, hs, forces));
+        ok = ok.then(solve(state, hs, forces));
         touch(state, (hs, behind));
     }
     let x = Sh::flat_mut(&mut state.pos);
@@ -297,7 +307,7 @@ impl Integrator for AnyIntegrator {
         times: (P::Scalar, P::Scalar),
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
-    ) -> Solved {
+    ) -> Solved<P::Scalar> {
         if let AnyIntegrator::DirectSprings(m) = *self {
             return m.substep_touching(model, state, memory, times, forces, touch);
         }
