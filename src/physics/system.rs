@@ -9,7 +9,7 @@ use crate::physics::body::Body;
 use crate::physics::force::ForceField;
 use crate::physics::integrator::{Integrator, Model, Solved, State, SymplecticEuler};
 use crate::physics::shape::Shape;
-use crate::physics::spring::{Topology, check_rest};
+use crate::physics::spring::{Spread, Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
 use crate::{Error, Point, Scalar, Settings};
 
@@ -81,6 +81,9 @@ pub struct MassSpring<P: Point, Sh: Shape, T, I: Integrator = SymplecticEuler> {
     settings: Settings<P, I>,
     /// What the integrator keeps between steps (`DirectSprings`: its factor).
     memory: I::Memory<P::Scalar, Sh>,
+    /// A key of the free particles' positions at the end of the last step, if that step
+    /// kept its method's tolerance ([`Model::settled`] when they are still there).
+    settled: Option<u32>,
 }
 
 impl<P: Point, Sh: Shape, T: core::fmt::Debug, I: Integrator> core::fmt::Debug
@@ -166,6 +169,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             per_rate: substeps_per_rate(&settings.integrator, settings.accuracy),
             settings,
             memory: I::memory(),
+            settled: None,
         };
         system.update_spring_rate();
         Ok(system)
@@ -458,6 +462,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             gravity: self.settings.gravity,
             damping: self.settings.damping,
             time: self.time,
+            settled: false,
         };
         let held = self.settings.integrator.holds_links();
         model.energy(self.positions(), self.velocities(), held)
@@ -619,6 +624,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Result<Solved<P::Scalar>, Error> {
         let saved = (self.state, self.time);
         let mut solved = Solved::plain(true);
+        let holds = self.settings.integrator.holds_links();
+        let mut settled = holds && self.settled.is_some() && self.settled == Some(self.key());
         for k in 1..=n {
             let model = Model {
                 inv_mass: &self.inv_mass,
@@ -626,6 +633,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 gravity: self.settings.gravity,
                 damping: self.settings.damping,
                 time: self.time,
+                settled,
             };
             let lag = h * P::Scalar::from_i16((n - k) as i16);
             let inv_mass = &self.inv_mass;
@@ -637,6 +645,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 forces,
                 &mut |state, times| resolve(state, inv_mass, times),
             ));
+            settled = solved.converged;
             self.time += h;
         }
         if !solved.fits {
@@ -644,11 +653,25 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         }
         let (most, of) = MAX_STRETCH;
         if self.settle(Sh::flat(&saved.0.pos)) && solved.stretch <= P::Scalar::ratio(most, of) {
+            self.settled = (holds && solved.converged).then(|| self.key());
             Ok(solved)
         } else {
             (self.state, self.time) = saved;
             Err(Error::Diverged)
         }
+    }
+
+    /// A key of the free particles' positions (their bits, in order): a pass over them.
+    fn key(&self) -> u32 {
+        let mut key = Spread::default();
+        let free = self.positions().iter().zip(self.inv_masses());
+        for (p, _) in free.filter(|(_, w)| **w > P::Scalar::ZERO) {
+            for d in 0..P::DIM {
+                key.add(p.coord(d).bits());
+            }
+        }
+        let sum = key.sum();
+        (sum >> 32) as u32 ^ sum as u32
     }
 
     /// After a `Q16` step whose forces saturated (a hand yanked far past what the rope can

@@ -6,6 +6,7 @@ use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
 use crate::{Point, Scalar};
+use core::cell::Cell;
 
 /// A rope's links solved together, exactly, along the chain: a fixed cost a frame whatever
 /// the stiffness, and a bob 100 times the rope's mass held at its length.
@@ -158,8 +159,13 @@ impl Integrator for DirectChain {
         forces: &mut F,
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> Solved<P::Scalar> {
+        // Whether the links are where a solve that kept the tolerance left them: the
+        // step's start as the system knows it, then each solve's and contacts' end.
+        let settled = Cell::new(model.settled);
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            self.solve_halving(model, state, hs, forces)
+            let solved = self.solve_halving(model, state, hs, forces, settled.get());
+            settled.set(solved.converged);
+            solved
         };
         if !self.inextensible {
             return super::split_solves(
@@ -178,6 +184,9 @@ impl Integrator for DirectChain {
             let before = state.pos;
             touch(state, times);
             after_contacts = self.hold_after_contacts(model, state, &before);
+            if let Some(stretch) = after_contacts {
+                settled.set(settled.get() && stretch <= tolerance_of(DirectChain::TOLERANCE));
+            }
         };
         let mut solved = super::split_solves(
             self.substeps,
@@ -238,15 +247,22 @@ impl DirectChain {
         state: &mut State<P, Sh>,
         h: P::Scalar,
         forces: &mut F,
+        settled: bool,
     ) -> Solved<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let w = model.inv_mass();
         let end = state.pos;
         let mut report = Solved::plain(true);
-        // `pieces` solves of `piece` make the share; `done` of them are solved.
+        // Links that start beyond the tolerance (the game put the particles there, or a
+        // solve that did not converge) are brought back first, as positions only: a solve
+        // turns that correction into velocity, and a shorter one into more of it. Where
+        // that fails (a straight rope pushed shorter than its length cannot tell which way
+        // to bend), shorter solves could only do worse: the solve is not halved.
+        // `pieces` solves of `piece` make the share; `done` of them are solved; `settled`
+        // once the links are known to start within the tolerance.
         let (mut piece, mut pieces, mut done, mut halved) = (h, 1u16, 0u16, 0u8);
+        let (mut settled, mut halvable) = (settled || !self.inextensible, true);
         while done < pieces {
-            let start = *state;
             if pieces > 1 {
                 let behind = piece * P::Scalar::from_i16((pieces - done - 1) as i16);
                 let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
@@ -256,7 +272,12 @@ impl DirectChain {
                     }
                 }
             }
-            let (solved, halvable) = self.solve_step(model, state, piece, forces);
+            if !settled {
+                halvable = self.bring_back_start(model, state, piece);
+                settled = true;
+            }
+            let start = *state;
+            let solved = self.solve_step(model, state, piece, forces);
             let half = piece * P::Scalar::ratio(1, 2);
             let may_halve = halvable && halved < self.halvings.min(MOST_HALVINGS);
             if !solved.converged && may_halve && half > tiny_length::<P::Scalar>() {
@@ -265,9 +286,39 @@ impl DirectChain {
                 continue;
             }
             report = report.then(solved);
+            settled = solved.converged;
             done += 1;
         }
         report
+    }
+
+    /// Brings the links of `state` back within the tolerance as positions only, with each
+    /// held particle where its hand was `h` seconds before (its place less its velocity
+    /// times `h`), and puts the held particles back; whether the links got there.
+    fn bring_back_start<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+    ) -> bool {
+        let (zero, w) = (P::Scalar::ZERO, model.inv_mass());
+        let hands = state.pos;
+        let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
+        for ((x, &v), &w) in x.iter_mut().zip(v).zip(w) {
+            if w <= zero {
+                *x -= v * h;
+            }
+        }
+        let mut links = Links::<P, Sh>::new(model, None);
+        let iterations = self.iterations.max(1);
+        let off = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
+        let x = Sh::flat_mut(&mut state.pos);
+        for ((x, &hand), &w) in x.iter_mut().zip(Sh::flat(&hands)).zip(w) {
+            if w <= zero {
+                *x = hand;
+            }
+        }
+        off <= tolerance_of(DirectChain::TOLERANCE)
     }
 
     fn solve_step<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
@@ -276,7 +327,7 @@ impl DirectChain {
         state: &mut State<P, Sh>,
         h: P::Scalar,
         forces: &mut F,
-    ) -> (Solved<P::Scalar>, bool) {
+    ) -> Solved<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let (a, ok) = model.accelerations_at(state, forces, false);
         let w = model.inv_mass();
@@ -290,31 +341,6 @@ impl DirectChain {
         let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
         let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         let iterations = self.iterations.max(1);
-        // Links that start beyond the tolerance (the game put the particles there, or a
-        // solve that did not converge) are brought back first, as positions only, with each
-        // held particle where its hand was at the solve's start: a solve would turn that
-        // correction into velocity, and a shorter solve into more of it. Where that fails (a
-        // straight rope pushed shorter than its length cannot tell which way to bend),
-        // shorter solves could only do worse: the solve is not halved.
-        let mut halvable = true;
-        if self.inextensible {
-            let hands = state.pos;
-            let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat(&state.vel));
-            for ((x, &v), &w) in x.iter_mut().zip(v).zip(w) {
-                if w <= zero {
-                    *x -= v * h;
-                }
-            }
-            let off = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
-            halvable = off <= tolerance_of(DirectChain::TOLERANCE);
-            let x = Sh::flat_mut(&mut state.pos);
-            for ((x, &hand), &w) in x.iter_mut().zip(Sh::flat(&hands)).zip(w) {
-                if w <= zero {
-                    *x = hand;
-                }
-            }
-        }
-        links.measured = None;
         let prev = state.pos;
         {
             // A held particle stays where its hand put it (it is already at the end of the
@@ -327,8 +353,13 @@ impl DirectChain {
                 }
             }
         }
-        for _ in 0..iterations {
-            links.solve(Sh::flat_mut(&mut state.pos), w);
+        for iteration in 1..=iterations {
+            // The last of several iterations, after one that took its whole step, starts near
+            // the solution, where a Newton step lowers the stretch: it is taken whole,
+            // unmeasured (the check below measures). Far from it (the one before was cut
+            // short, as in a whip), it takes the line search too.
+            let whole = iteration > 1 && iteration == iterations && links.took_whole;
+            links.solve(Sh::flat_mut(&mut state.pos), w, whole);
             if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
             } else if self.inextensible
@@ -350,7 +381,7 @@ impl DirectChain {
             converged,
             stretch: if self.inextensible { off } else { zero },
         };
-        (solved, halvable)
+        solved
     }
 }
 
@@ -373,6 +404,8 @@ struct Links<P: Point, Sh: Shape> {
     length: Sh::PerParticle<P::Scalar>,
     inverse: Sh::PerParticle<P::Scalar>,
     measured: Option<P::Scalar>,
+    /// Whether the last iteration's line search took the whole Newton step.
+    took_whole: bool,
 }
 
 /// A tolerance given as `(numerator, denominator)`, in the format.
@@ -427,6 +460,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             length: Sh::filled(zero),
             inverse: Sh::filled(zero),
             measured: None,
+            took_whole: false,
         };
         model.topology.for_each_spring(|i, j, length, m| {
             if i.abs_diff(j) == 1 {
@@ -442,11 +476,58 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
     }
 
     /// The largest distance of a link at `x` from its goal, relative to its rest length:
-    /// `|l − rest + α̃ λ| / rest` (`|l − rest| / rest` when inextensible; a spring's
-    /// multiplier is known to the format's resolution only, so 16 units of it are allowed
-    /// for: in `Q16`, 0.02% of a 1 m link under a compliance of 1). Measures the links
-    /// unless the last iteration did. A multiplication a link and one division.
+    /// `|l − g| / rest`, `g = rest − α̃ λ` its goal (its rest length when inextensible; a
+    /// spring's multiplier is known to the format's resolution only, so 16 units of it are
+    /// allowed for: in `Q16`, 0.02% of a 1 m link under a compliance of 1). First from the
+    /// squared lengths, `|l² − g²| / g²` (about twice the ratio): where every link is within
+    /// twice the tolerance that way, only the largest is measured (one square root), and
+    /// the ratio is the largest to within its own square; otherwise every link is measured
+    /// ([`off_measured`](Self::off_measured)). About five multiplications a link.
     fn off(&mut self, x: &[P]) -> P::Scalar {
+        let zero = P::Scalar::ZERO;
+        let (n, d) = DirectChain::TOLERANCE;
+        let twice = P::Scalar::ratio(2 * n, d);
+        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
+        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
+        // The largest ratio as its numerator and denominator, compared by products; a
+        // link of the same goal as the one before (a rope's) reuses its square and limit.
+        let (mut most, mut of, mut at) = (zero, P::Scalar::ONE, None);
+        let (mut last, mut g2, mut limit) = (zero, zero, zero);
+        for i in (0..x.len().saturating_sub(1)).filter(|&i| linked[i]) {
+            let c = compliance[i];
+            let g = if c > zero {
+                rest[i] - c * lambda[i]
+            } else {
+                rest[i]
+            };
+            if g != last {
+                (last, g2) = (g, g * g);
+                limit = g2 * twice;
+            }
+            let d = x[i + 1] - x[i];
+            let off = (d.dot(d) - g2).abs();
+            if !(off.is_finite() && g2 > zero && off <= limit) {
+                return self.off_measured(x);
+            }
+            let larger = if g2 == of {
+                off >= most
+            } else {
+                off * of >= most * g2
+            };
+            if larger {
+                (most, of, at) = (off, g2, Some(i));
+            }
+        }
+        let Some(i) = at else {
+            return zero;
+        };
+        let off = ((x[i + 1] - x[i]).length() - rest[i] + compliance[i] * lambda[i]).abs();
+        (off - compliance[i] * tiny_length::<P::Scalar>()).max(zero) / rest[i]
+    }
+
+    /// [`off`](Self::off) from every link's length: measures the links unless the last
+    /// iteration did. A multiplication a link and one division.
+    fn off_measured(&mut self, x: &[P]) -> P::Scalar {
         let zero = P::Scalar::ZERO;
         let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
         let (length, inverse) = (
@@ -458,7 +539,6 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
         }
         let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
         let rounding = tiny_length::<P::Scalar>();
-        // The largest ratio as its numerator and denominator, compared by products.
         let (mut most, mut of) = (zero, P::Scalar::ONE);
         for i in (0..x.len().saturating_sub(1)).filter(|&i| linked[i]) {
             let off = (length[i] - rest[i] + compliance[i] * lambda[i]).abs();
@@ -484,7 +564,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             .fold(P::Scalar::ZERO, |sum, &l| sum + l);
         let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         for _ in 0..iterations.saturating_mul(4) {
-            self.solve(x, w);
+            self.solve(x, w, false);
             if self.measured.is_some_and(|r| r <= tolerance * tolerance) {
                 break;
             }
@@ -494,11 +574,12 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
     }
 
     /// One Newton iteration: the links' tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` at
-    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it,
-    /// the whole step or, while that would not lower the links' squared stretch, half of it
-    /// and so on (a line search). A link too short to have a direction sits the iteration
-    /// out.
-    fn solve(&mut self, x: &mut [P], w: &[P::Scalar]) {
+    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it:
+    /// with `whole`, by the whole step, unmeasured; otherwise the whole step or, while that
+    /// would not lower the links' squared stretch, half of it and so on (a line search,
+    /// [`took_whole`](Self::took_whole) unless it cut the step). A link too short to have a
+    /// direction sits the iteration out.
+    fn solve(&mut self, x: &mut [P], w: &[P::Scalar], whole: bool) {
         let zero = P::Scalar::ZERO;
         let (rest, compliance) = (Sh::flat(&self.rest), Sh::flat(&self.compliance));
         let (linked, lambda) = (Sh::flat(&self.linked), Sh::flat_mut(&mut self.lambda));
@@ -566,7 +647,10 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             solved[i] -= ratio[i] * solved[i + 1];
         }
         let before = Sh::flat_mut(&mut self.before);
-        before.copy_from_slice(x);
+        if !whole {
+            before.copy_from_slice(x);
+        }
+        self.took_whole = true;
         for halving in 0..=MAX_HALVINGS {
             // Each particle moves by the difference of its two links' pulls.
             let mut pull = P::default();
@@ -581,11 +665,16 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 }
                 pull = out;
             }
+            if whole {
+                self.measured = None;
+                return;
+            }
             let after = measure(x, rest, linked, (length, inverse));
             self.measured = Some(after);
             if halving == MAX_HALVINGS || after <= residual {
                 break;
             }
+            self.took_whole = false;
             x.copy_from_slice(before);
             for s in solved.iter_mut() {
                 *s = *s * P::Scalar::ratio(1, 2);

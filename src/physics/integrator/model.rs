@@ -26,6 +26,10 @@ pub struct Model<'a, P: Point, Sh: Shape, T> {
     pub(crate) gravity: P,
     pub(crate) damping: P::Scalar,
     pub(crate) time: P::Scalar,
+    /// `true` when the free particles are where a substep that kept its method's
+    /// tolerance left them (nothing else has moved them since): a method that holds its
+    /// links need not check where they start.
+    pub(crate) settled: bool,
 }
 
 /// Springs shorter than this have no direction: 16 units of rounding.
