@@ -40,10 +40,13 @@ fn status(game: &Catapult) -> String {
             landing_x(from, launch, -9.81)
         ),
     };
-    // The rope's links are solved together each frame: it holds its length under the penguin.
+    // The rope's links are solved together each frame: it holds its length under the
+    // penguin, and each step says whether it kept every link within 0.1%
+    // (`StepInfo::converged`).
     let line = format!(
-        "{line}   (largest stretch {:.1}%)",
-        game.largest_stretch * 100.0
+        "{line}   (largest stretch {:.1}%, {} frames beyond 0.1%)",
+        game.largest_stretch * 100.0,
+        game.unconverged_frames
     );
     match game.slow_frames {
         0 => line,

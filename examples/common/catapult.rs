@@ -61,6 +61,8 @@ pub struct Catapult {
     snow: [Collider<Vec2<f32>>; 1],
     /// Frames whose step hit the substep cap and simulated less than the frame.
     pub slow_frames: u32,
+    /// Frames whose step said it left a link more than 0.1% off (`StepInfo::converged`).
+    pub unconverged_frames: u32,
     /// The largest stretch of the rope (its particles' chain) while the penguin hangs on it
     /// (0.01 is 1%).
     pub largest_stretch: f32,
@@ -115,6 +117,7 @@ impl Catapult {
                     .expect("a valid floor"),
             ],
             slow_frames: 0,
+            unconverged_frames: 0,
             largest_stretch: 0.0,
         }
     }
@@ -148,6 +151,7 @@ impl Catapult {
         }
         .expect("the rope stays stable");
         self.slow_frames += u32::from(info.slow_motion);
+        self.unconverged_frames += u32::from(!info.converged);
         if self.penguin == Penguin::Swinging && self.pieces() == 1 {
             let length: f32 = self
                 .rope

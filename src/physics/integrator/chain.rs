@@ -70,8 +70,9 @@ use core::cell::Cell;
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.24
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
-/// Q16.16, one solve of up to 2 iterations takes up to 18 326 instructions a step for 8
-/// particles, and a frame with its 33-point curve up to 23 551 (`examples/mcu_catapult.rs`).
+/// Q16.16, one solve of up to 2 iterations takes up to 21 954 instructions a step for 8
+/// particles, and a frame with its 33-point curve up to 27 133 (`examples/mcu_catapult.rs`;
+/// the check that every link ends within the tolerance is about 2 650 of them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); a solve stops as soon as its links
@@ -376,12 +377,11 @@ impl DirectChain {
                 *v = (x - p) * inv_h;
             }
         }
-        let solved = Solved {
+        Solved {
             fits: ok,
             converged,
             stretch: if self.inextensible { off } else { zero },
-        };
-        solved
+        }
     }
 }
 
