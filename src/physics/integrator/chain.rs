@@ -70,9 +70,8 @@ use core::cell::Cell;
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.24
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
-/// Q16.16, one solve of up to 2 iterations takes up to 21 954 instructions a step for 8
-/// particles, and a frame with its 33-point curve up to 27 133 (`examples/mcu_catapult.rs`;
-/// the check that every link ends within the tolerance is about 2 650 of them).
+/// Q16.16, one solve of up to 2 iterations takes up to 22 081 instructions a step for 8
+/// particles, and a frame with its 33-point curve up to 27 309 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); a solve stops as soon as its links
@@ -168,20 +167,12 @@ impl Integrator for DirectChain {
             settled.set(solved.converged);
             solved
         };
-        if !self.inextensible {
-            return super::split_solves(
-                self.substeps,
-                model,
-                state,
-                (h, lag),
-                forces,
-                touch,
-                solve,
-            );
-        }
         // The stretch the last solve's contacts left, when they moved a particle.
         let mut after_contacts = None;
         let mut touch = |state: &mut State<P, Sh>, times| {
+            if !self.inextensible {
+                return touch(state, times);
+            }
             let before = state.pos;
             touch(state, times);
             after_contacts = self.hold_after_contacts(model, state, &before);
@@ -199,8 +190,7 @@ impl Integrator for DirectChain {
             solve,
         );
         if let Some(stretch) = after_contacts {
-            let (off, of) = DirectChain::TOLERANCE;
-            solved.converged &= stretch <= P::Scalar::ratio(off, of);
+            solved.converged &= stretch <= tolerance_of(DirectChain::TOLERANCE);
             solved.stretch = stretch;
         }
         solved
@@ -214,7 +204,8 @@ impl DirectChain {
     /// agree at the end of the solve (made much heavier, a rope pulled over a box's corner
     /// by a heavy load would fight the box's faces, stretching further each frame); the
     /// links' stretch then, or `None` when no contact moved a particle (at no cost). A
-    /// square root a link when one did.
+    /// square root a link when one did. Out of line: most solves touch nothing.
+    #[inline(never)]
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
         model: &Model<'_, P, Sh, T>,
@@ -254,13 +245,13 @@ impl DirectChain {
         let w = model.inv_mass();
         let end = state.pos;
         let mut report = Solved::plain(true);
-        // Links that start beyond the tolerance (the game put the particles there, or a
-        // solve that did not converge) are brought back first, as positions only: a solve
-        // turns that correction into velocity, and a shorter one into more of it. Where
-        // that fails (a straight rope pushed shorter than its length cannot tell which way
-        // to bend), shorter solves could only do worse: the solve is not halved.
-        // `pieces` solves of `piece` make the share; `done` of them are solved; `settled`
-        // once the links are known to start within the tolerance.
+        // `pieces` solves of `piece` make the share; `done` of them are solved. Unless the
+        // links are known to start within the tolerance (`settled`), they are brought back
+        // first, as positions only (the game put the particles there, or a solve that did
+        // not converge): a solve turns that correction into velocity, and a shorter one
+        // into more of it. Where that fails (a straight rope pushed shorter than its length
+        // cannot tell which way to bend), shorter solves could only do worse: the solve is
+        // not halved.
         let (mut piece, mut pieces, mut done, mut halved) = (h, 1u16, 0u16, 0u8);
         let (mut settled, mut halvable) = (settled || !self.inextensible, true);
         while done < pieces {
@@ -296,6 +287,8 @@ impl DirectChain {
     /// Brings the links of `state` back within the tolerance as positions only, with each
     /// held particle where its hand was `h` seconds before (its place less its velocity
     /// times `h`), and puts the held particles back; whether the links got there.
+    #[cold]
+    #[inline(never)]
     fn bring_back_start<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
         model: &Model<'_, P, Sh, T>,
@@ -333,10 +326,8 @@ impl DirectChain {
         let (a, ok) = model.accelerations_at(state, forces, false);
         let w = model.inv_mass();
         let inv_h = P::Scalar::ONE / h;
-        // `1 / (k h²)` as `(1/h) / (k h)`: in `Q16`, `h²` of a short solve is below the
-        // format's resolution, and a stiffness past its range leaves 0 (held, inextensible).
-        let compliance = |k: P::Scalar| inv_h / (k * h);
-        let mut links = Links::<P, Sh>::new(model, (!self.inextensible).then_some(&compliance));
+        let mut links = Links::<P, Sh>::new(model, (!self.inextensible).then_some((inv_h, h)));
+        let compliance = |k: P::Scalar| compliance(inv_h, h, k);
         // Held links have converged once their squared stretch is within that of 10⁻⁶ of the
         // rope's length (springs stretch by design: they take every iteration).
         let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
@@ -408,6 +399,13 @@ struct Links<P: Point, Sh: Shape> {
     took_whole: bool,
 }
 
+/// A spring's compliance `1 / (k h²)` in a solve of `h`, as `(1/h) / (k h)` from `1/h`: in
+/// `Q16`, `h²` of a short solve is below the format's resolution, and a stiffness past its
+/// range leaves 0 (held, inextensible).
+fn compliance<S: Scalar>(inv_h: S, h: S, k: S) -> S {
+    inv_h / (k * h)
+}
+
 /// A tolerance given as `(numerator, denominator)`, in the format.
 fn tolerance_of<S: Scalar>((n, d): (u32, u32)) -> S {
     S::ratio(n, d)
@@ -441,10 +439,11 @@ fn measure<P: Point>(
 
 impl<P: Point, Sh: Shape> Links<P, Sh> {
     /// The links of `model`'s springs from particle `i` to `i + 1` that have a free end,
-    /// each with its spring's `compliance(k)` when given (inextensible without).
+    /// each with its spring's compliance `1 / (k h²)` for a solve of `h` when given as
+    /// `(1 / h, h)` (inextensible without).
     fn new<T: Topology<P::Scalar>>(
         model: &Model<'_, P, Sh, T>,
-        compliance: Option<&dyn Fn(P::Scalar) -> P::Scalar>,
+        h: Option<(P::Scalar, P::Scalar)>,
     ) -> Self {
         let zero = P::Scalar::ZERO;
         let w = model.inv_mass();
@@ -467,8 +466,8 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 let i = i.min(j);
                 Sh::flat_mut(&mut links.rest)[i] = length;
                 Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
-                if let (Some(compliance), true) = (compliance, m.stiffness > zero) {
-                    Sh::flat_mut(&mut links.compliance)[i] = compliance(m.stiffness);
+                if let (Some((inv_h, h)), true) = (h, m.stiffness > zero) {
+                    Sh::flat_mut(&mut links.compliance)[i] = compliance(inv_h, h, m.stiffness);
                 }
             }
         });
@@ -527,6 +526,8 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
 
     /// [`off`](Self::off) from every link's length: measures the links unless the last
     /// iteration did. A multiplication a link and one division.
+    #[cold]
+    #[inline(never)]
     fn off_measured(&mut self, x: &[P]) -> P::Scalar {
         let zero = P::Scalar::ZERO;
         let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
@@ -554,6 +555,8 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
     /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations; how
     /// far off they end ([`off`](Self::off)). Does nothing when they are within already (a
     /// square root a link to find out).
+    #[cold]
+    #[inline(never)]
     fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> P::Scalar {
         let off = self.off(x);
         if off <= tolerance_of(DirectChain::TOLERANCE) {
