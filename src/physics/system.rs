@@ -210,6 +210,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     pub(crate) fn with_topology<R>(&mut self, f: impl FnOnce(&mut T) -> R) -> R {
         let r = f(&mut self.topology);
         self.update_spring_rate();
+        // A new rest length leaves the links off where a converged step left them.
+        self.settled = None;
         r
     }
 
