@@ -64,14 +64,15 @@ use core::cell::Cell;
 ///   without a bob, but the light links beside a heavy bob then whip out of control: their
 ///   sideways motion under its tension is stepped explicitly.)
 ///
-/// Cost: per iteration, a square root, two inverses and about 15 multiplications a link, and
-/// a square root a link a solve to measure where the links start
+/// Cost: per iteration, a square root, two inverses and about 15 multiplications a link;
+/// per solve, about five multiplications a link and a square root to check where the links
+/// end (and as much to check where they start, when no converged solve left them there)
 /// (in `Q16` no division: a link's inverse length comes with its root,
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.02× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.24
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
-/// Q16.16, one solve of up to 2 iterations takes up to 22 081 instructions a step for 8
-/// particles, and a frame with its 33-point curve up to 27 309 (`examples/mcu_catapult.rs`).
+/// Q16.16, one solve of up to 2 iterations takes up to 22 100 instructions a step for 8
+/// particles, and a frame with its 33-point curve up to 27 328 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); a solve stops as soon as its links
@@ -328,10 +329,6 @@ impl DirectChain {
         let inv_h = P::Scalar::ONE / h;
         let mut links = Links::<P, Sh>::new(model, (!self.inextensible).then_some((inv_h, h)));
         let compliance = |k: P::Scalar| compliance(inv_h, h, k);
-        // Held links have converged once their squared stretch is within that of 10⁻⁶ of the
-        // rope's length (springs stretch by design: they take every iteration).
-        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
-        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         let iterations = self.iterations.max(1);
         let prev = state.pos;
         {
@@ -354,9 +351,7 @@ impl DirectChain {
             links.solve(Sh::flat_mut(&mut state.pos), w, whole);
             if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
-            } else if self.inextensible
-                && links.measured.is_some_and(|r| r <= tolerance * tolerance)
-            {
+            } else if self.inextensible && links.exact() {
                 break;
             }
         }
@@ -397,6 +392,9 @@ struct Links<P: Point, Sh: Shape> {
     measured: Option<P::Scalar>,
     /// Whether the last iteration's line search took the whole Newton step.
     took_whole: bool,
+    /// The squared stretch within which held links are exact: that of 10⁻⁶ of the rope's
+    /// length (springs stretch by design: they take every iteration).
+    exact: P::Scalar,
 }
 
 /// A spring's compliance `1 / (k h²)` in a solve of `h`, as `(1/h) / (k h)` from `1/h`: in
@@ -460,6 +458,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             inverse: Sh::filled(zero),
             measured: None,
             took_whole: false,
+            exact: zero,
         };
         model.topology.for_each_spring(|i, j, length, m| {
             if i.abs_diff(j) == 1 {
@@ -471,7 +470,15 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 }
             }
         });
+        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
+        let exact = rest * P::Scalar::ratio(1, 1_000_000);
+        links.exact = exact * exact;
         links
+    }
+
+    /// Whether the last iteration measured the links within 10⁻⁶ of the rope's length.
+    fn exact(&self) -> bool {
+        self.measured.is_some_and(|r| r <= self.exact)
     }
 
     /// The largest distance of a link at `x` from its goal, relative to its rest length:
@@ -553,22 +560,17 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
 
     /// Moves the particles (positions only, by inverse masses `w`) towards every link
     /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations; how
-    /// far off they end ([`off`](Self::off)). Does nothing when they are within already (a
-    /// square root a link to find out).
-    #[cold]
+    /// far off they end ([`off`](Self::off)). Does nothing when they are within already
+    /// (about five multiplications a link to find out).
     #[inline(never)]
     fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> P::Scalar {
         let off = self.off(x);
         if off <= tolerance_of(DirectChain::TOLERANCE) {
             return off;
         }
-        let rest: P::Scalar = Sh::flat(&self.rest)
-            .iter()
-            .fold(P::Scalar::ZERO, |sum, &l| sum + l);
-        let tolerance = rest * P::Scalar::ratio(1, 1_000_000);
         for _ in 0..iterations.saturating_mul(4) {
             self.solve(x, w, false);
-            if self.measured.is_some_and(|r| r <= tolerance * tolerance) {
+            if self.exact() {
                 break;
             }
         }
