@@ -65,6 +65,7 @@
 //! let mut pushes = [Push::default(); 1];
 //! let mut points = [Vec2::default(); 36];
 //! for _ in 0..120 {
+//!     velocity += Vec2::new(0.0, -9.81) / 60.0; // gravity first (semi-implicit Euler)
 //!     ball += velocity / 60.0; // where the ball will be at the end of the frame
 //!     let colliders = [Collider::ball(ball, radius)?.moving(velocity)?.with_mass(mass)?];
 //!     let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))?
@@ -72,7 +73,7 @@
 //!     let info = rope.step_touching(1.0 / 60.0, (), &contacts)?;
 //!     assert!(!info.slow_motion);
 //!     ball += pushes[0].shift;
-//!     velocity += pushes[0].impulse / mass + Vec2::new(0.0, -9.81) / 60.0;
+//!     velocity += pushes[0].impulse / mass;
 //!     let n = rope.sample(Smoothing::BSpline, &mut points)?;
 //!     # #[cfg(feature = "embedded-graphics")]
 //!     # {
