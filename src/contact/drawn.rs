@@ -16,6 +16,10 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar;
     /// The point of span `span` at `t`.
     fn point(&self, span: usize, t: P::Scalar) -> P;
+    /// Its derivative `dP/dt` there.
+    fn tangent(&self, span: usize, t: P::Scalar) -> P;
+    /// Span `span`'s Bézier control points when it is a cubic.
+    fn cubic(&self, span: usize) -> Option<[P; 4]>;
     /// The control points' weights in that point.
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]);
     /// Redraws through moved control points; `false` when they left the range.
@@ -52,6 +56,12 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
     fn point(&self, span: usize, t: P::Scalar) -> P {
         self.curve.point(span, t)
     }
+    fn tangent(&self, span: usize, t: P::Scalar) -> P {
+        self.curve.tangent(span, t)
+    }
+    fn cubic(&self, span: usize) -> Option<[P; 4]> {
+        self.curve.span_points(span).try_into().ok()
+    }
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
         self.curve.weights(span, t, weights);
     }
@@ -77,56 +87,138 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
     }
 }
 
-/// `Σ w(i) · p_i`.
-pub(super) fn point_of<P: Point>(points: &[P], w: impl Fn(usize) -> P::Scalar) -> P {
-    points
-        .iter()
-        .enumerate()
-        .fold(P::default(), |acc, (i, &p)| acc + p * w(i))
+/// A drawn point's particle weights, only those that are not zero (at most 4 for a cubic
+/// span's point, 2 for a segment's, all `K` for one Bézier's or a natural spline's), in
+/// rising particle order: what reads and moves the point costs that many particles, not `K`.
+#[derive(Clone, Copy)]
+pub(super) struct Weights<S, const K: usize> {
+    index: [u16; K],
+    weight: [S; K],
+    len: usize,
 }
 
-/// The inverse mass of the drawn point with particle weights `w`, `Σ w_i² / m_i` over the
-/// free particles (what a push on that point meets), or `None` when every particle that moves
-/// it is pinned.
-pub(super) fn point_inv_mass<S: Scalar>(inv_mass: &[S], w: impl Fn(usize) -> S) -> Option<S> {
-    let norm = inv_mass
-        .iter()
-        .enumerate()
-        .filter(|&(_, &m)| m > S::ZERO)
-        .fold(S::ZERO, |norm, (i, &m)| norm + w(i) * w(i) * m);
+impl<S: Scalar, const K: usize> Weights<S, K> {
+    /// The weights of span `span`'s point at `t` on `curve`.
+    pub(super) fn of<P: Point<Scalar = S>>(
+        curve: &impl DrawnSpans<P, K>,
+        span: usize,
+        t: S,
+    ) -> Self {
+        let mut dense = [S::ZERO; K];
+        curve.weights(span, t, &mut dense);
+        let mut w = Weights {
+            index: [0; K],
+            weight: [S::ZERO; K],
+            len: 0,
+        };
+        for (i, &x) in dense.iter().enumerate() {
+            w.push(i, x);
+        }
+        w
+    }
+
+    /// The weights of one point less another's (a particle in both weighs the difference).
+    pub(super) fn minus(&self, other: &Self) -> Self {
+        let mut w = Weights {
+            index: [0; K],
+            weight: [S::ZERO; K],
+            len: 0,
+        };
+        let (mut a, mut b) = (self.entries().peekable(), other.entries().peekable());
+        loop {
+            match (a.peek().copied(), b.peek().copied()) {
+                (Some((i, x)), Some((j, y))) if i == j => {
+                    w.push(i, x - y);
+                    a.next();
+                    b.next();
+                }
+                (Some((i, x)), Some((j, _))) if i < j => {
+                    w.push(i, x);
+                    a.next();
+                }
+                (_, Some((j, y))) => {
+                    w.push(j, -y);
+                    b.next();
+                }
+                (Some((i, x)), None) => {
+                    w.push(i, x);
+                    a.next();
+                }
+                (None, None) => return w,
+            }
+        }
+    }
+
+    /// Appends particle `i` at weight `x` unless it is zero (`i` past the last).
+    fn push(&mut self, i: usize, x: S) {
+        if x != S::ZERO && self.len < K {
+            (self.index[self.len], self.weight[self.len]) = (i as u16, x);
+            self.len += 1;
+        }
+    }
+
+    /// `(particle, weight)` for each weight that is not zero.
+    pub(super) fn entries(&self) -> impl Iterator<Item = (usize, S)> + Clone + '_ {
+        self.index[..self.len]
+            .iter()
+            .zip(&self.weight[..self.len])
+            .map(|(&i, &x)| (usize::from(i), x))
+    }
+}
+
+/// `Σ w_i · p_i` over `(i, w_i)` in `w`.
+pub(super) fn point_of<P: Point>(
+    points: &[P],
+    w: impl IntoIterator<Item = (usize, P::Scalar)>,
+) -> P {
+    w.into_iter()
+        .fold(P::default(), |acc, (i, x)| acc + points[i] * x)
+}
+
+/// The inverse mass of the drawn point with particle weights `w` (`(i, w_i)`), `Σ w_i² / m_i`
+/// over the free particles (what a push on that point meets), or `None` when every particle
+/// that moves it is pinned.
+pub(super) fn point_inv_mass<S: Scalar>(
+    inv_mass: &[S],
+    w: impl IntoIterator<Item = (usize, S)>,
+) -> Option<S> {
+    let norm = w
+        .into_iter()
+        .filter(|&(i, _)| inv_mass[i] > S::ZERO)
+        .fold(S::ZERO, |norm, (i, x)| norm + x * x * inv_mass[i]);
     (norm > S::ZERO).then_some(norm)
 }
 
-/// Moves the particles so that the drawn point with particle weights `w` moves by `dx` and
-/// its velocity changes by `dv`: the smallest change in the inverse-mass metric. Returns the
-/// momentum the particles gained, or `None` when every particle that moves the point is
-/// pinned.
+/// Moves the particles so that the drawn point with particle weights `w` (`(i, w_i)`, each
+/// particle once) moves by `dx` and its velocity changes by `dv`: the smallest change in the
+/// inverse-mass metric. Returns the momentum the particles gained, or `None` when every
+/// particle that moves the point is pinned.
 pub(super) fn spread<P: Point>(
     pos: &mut [P],
     vel: &mut [P],
     inv_mass: &[P::Scalar],
-    w: impl Fn(usize) -> P::Scalar,
+    w: impl IntoIterator<Item = (usize, P::Scalar)> + Clone,
     (dx, dv): (P, P),
 ) -> Option<P> {
     let zero = P::Scalar::ZERO;
     let (mut norm, mut sum) = (zero, zero);
-    for (i, &m) in inv_mass.iter().enumerate() {
+    for (i, x) in w.clone() {
+        let m = inv_mass[i];
         if m > zero {
-            let wi = w(i);
-            norm += wi * wi * m;
-            sum += wi;
+            norm += x * x * m;
+            sum += x;
         }
     }
     if norm <= zero {
         return None;
     }
     let share = P::Scalar::ONE / norm;
-    for (i, ((x, v), &m)) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass).enumerate() {
-        let wi = w(i);
-        if wi != zero && m > zero {
-            let k = wi * m * share;
-            *x += dx * k;
-            *v += dv * k;
+    for (i, x) in w {
+        let m = inv_mass[i];
+        if m > zero {
+            let k = x * m * share;
+            pos[i] += dx * k;
+            vel[i] += dv * k;
         }
     }
     Some(dv * (sum * share))
@@ -189,7 +281,7 @@ impl<S: Scalar, const U: usize, const V: usize> SurfacePoint<S, U, V> {
             .take(rows.end)
             .skip(rows.start)
         {
-            sum += point_of(&row[columns.clone()], |i| wu[i]) * wv;
+            sum += point_of(&row[columns.clone()], wu.iter().copied().enumerate()) * wv;
         }
         sum
     }

@@ -2,21 +2,93 @@
 //! ([`Contacts::with_self_contact`]).
 
 use super::Contacts;
-use super::drawn::{DrawnSpans, SurfacePoint, point_of, spread};
+use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
+
+/// Each span's points at [`SAMPLES`] + 1 even steps and, in floating point, its cubic in
+/// power form, taken when a pair first needs them and kept until the curve moves: a span's
+/// samples serve all its pairs.
+struct Samples<P, const K: usize> {
+    points: [[P; SAMPLES + 1]; K],
+    power: [Option<Power<P>>; K],
+    fresh: [bool; K],
+}
+
+impl<P: Point, const K: usize> Samples<P, K> {
+    fn new() -> Self {
+        Samples {
+            points: [[P::default(); SAMPLES + 1]; K],
+            power: [None; K],
+            fresh: [false; K],
+        }
+    }
+
+    /// Span `span`'s samples on `curve`, and its power form when it has one.
+    fn of(
+        &mut self,
+        curve: &impl DrawnSpans<P, K>,
+        span: usize,
+    ) -> (&[P; SAMPLES + 1], Option<Power<P>>) {
+        if !self.fresh[span] {
+            // Fixed point keeps de Casteljau's convex combinations: the power form's
+            // coefficients can leave the format's range.
+            let power = curve
+                .cubic(span)
+                .filter(|_| !P::Scalar::FIXED_POINT)
+                .map(Power::of);
+            for (k, x) in self.points[span].iter_mut().enumerate() {
+                let t = P::Scalar::ratio(k as u32, SAMPLES as u32);
+                *x = power.map_or_else(|| curve.point(span, t), |c| c.at(t));
+            }
+            (self.power[span], self.fresh[span]) = (power, true);
+        }
+        (&self.points[span], self.power[span])
+    }
+
+    /// Forgets every span's samples (the curve moved).
+    fn forget(&mut self) {
+        self.fresh = [false; K];
+    }
+}
+
+/// A cubic in power form about its start, `p(t) = p0 + t·(c1 + t·(c2 + t·c3))`: a point in 3
+/// multiply-adds a coordinate, its tangent in 2, where de Casteljau takes 6 and 5 lerps.
+#[derive(Clone, Copy)]
+struct Power<P>([P; 4]);
+
+impl<P: Point> Power<P> {
+    /// The power form of the Bézier cubic with control points `p`.
+    fn of([p0, p1, p2, p3]: [P; 4]) -> Self {
+        let three = P::Scalar::from_i16(3);
+        let (d1, d2, d3) = (p1 - p0, p2 - p1, p3 - p2);
+        Power([p0, d1 * three, (d2 - d1) * three, d3 - d2 - d2 + d1])
+    }
+
+    fn at(&self, t: P::Scalar) -> P {
+        let [p0, c1, c2, c3] = self.0;
+        p0 + (c1 + (c2 + c3 * t) * t) * t
+    }
+
+    fn slope(&self, t: P::Scalar) -> P {
+        let [_, c1, c2, c3] = self.0;
+        c1 + (c2 + c2 + c3 * (t * P::Scalar::from_i16(3))) * t
+    }
+}
 
 impl<P: Point> Contacts<'_, P> {
     /// Keeps every two spans of `curve` that are not neighbours (`closed`: counted round the
     /// loop) at least twice the thickness apart, when self-contact is on. Broad phase: each
     /// span's control-point box (it holds the span) grown by the thickness, sorted along the
     /// first axis and swept, so only spans whose boxes overlap are compared. Narrow phase:
-    /// the nearest points of the two spans ([`nearest`]; exactly, for the straight segments
-    /// between the particles); the pair is pushed apart along the line between them, through both spans'
-    /// particle weights (a particle both spans share moves by the difference), with its
-    /// approach stopped and its sliding braked by Coulomb friction. Returns the deepest
-    /// overlap it found, or `None` when the redrawn curve left the range (the step's guard
-    /// undoes it).
+    /// the nearest points of the two spans ([`nearest`], from [`SAMPLES`] + 1 points of each
+    /// span taken once for all its pairs; exactly, for the straight segments between the
+    /// particles), found on the curve as the pass began; the pair is measured where the
+    /// particles are now (each point a weighted sum of them) and pushed apart along the line
+    /// between them, through both spans' particle weights (a particle both spans share moves
+    /// by the difference), with its approach stopped and its sliding braked by Coulomb
+    /// friction. The curve is redrawn once, after the pass. Returns the deepest overlap it
+    /// found, or `None` when the redrawn curve left the range (the step's guard undoes it).
     pub(super) fn resolve_self<const K: usize>(
         &self,
         pos: &mut [P; K],
@@ -37,62 +109,84 @@ impl<P: Point> Contacts<'_, P> {
             *o = span;
         }
         let closed = curve.is_closed();
+        let (mut samples, straight) = (Samples::new(), curve.is_straight());
         let mut deepest = zero;
         sweep(&boxes[..n], &mut order[..n], |a, b| {
             let apart = a.abs_diff(b);
             let apart = if closed { apart.min(n - apart) } else { apart };
             if apart >= 2 {
-                let depth = self.push_apart(pos, vel, inv_mass, (h, friction), curve, (a, b))?;
-                deepest = deepest.max(depth);
+                let parts = (&mut *pos, &mut *vel, inv_mass);
+                let depth = self.push_apart(parts, (h, friction), &*curve, (a, b), &mut samples);
+                // A curved span's search reads the curve: redrawn after each push. Straight
+                // spans are read from the particles, and the curve redrawn once at the end.
+                if depth > zero {
+                    deepest = deepest.max(depth);
+                    if !(straight || curve.rebuild(pos)) {
+                        return None;
+                    }
+                    samples.forget();
+                }
             }
             Some(())
         })?;
-        Some(deepest)
+        (!straight || deepest == zero || curve.rebuild(pos)).then_some(deepest)
     }
 
     /// Pushes spans `a` and `b` of `curve` apart where they are nearer than twice the
-    /// thickness; returns by how much they were (0 when apart), or `None` when the redrawn
-    /// curve left the range.
+    /// thickness ([`nearest`] from `samples`, or exactly for straight segments); returns by
+    /// how much they were (0 when apart or both spans are held).
     fn push_apart<const K: usize>(
         &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
+        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         (h, friction): (P::Scalar, P::Scalar),
-        curve: &mut impl DrawnSpans<P, K>,
+        curve: &impl DrawnSpans<P, K>,
         (a, b): (usize, usize),
-    ) -> Option<P::Scalar> {
+        samples: &mut Samples<P, K>,
+    ) -> P::Scalar {
         let zero = P::Scalar::ZERO;
         let gap = self.thickness + self.thickness;
-        let between = |u, v| curve.point(a, u) - curve.point(b, v);
         let found = if curve.is_straight() {
-            // Two segments: their nearest points exactly.
-            let ends = |span| (curve.point(span, zero), curve.point(span, P::Scalar::ONE));
+            // Two segments between the particles: their nearest points exactly.
+            let ends = |span: usize| (pos[span], pos[(span + 1) % K]);
             let (u, v, _) = segments_nearest(ends(a), ends(b));
             Some((u, v))
         } else {
-            nearest(|u| curve.point(a, u), |v| curve.point(b, v), gap)
+            let (pa, ca) = samples.of(curve, a);
+            let pa = *pa;
+            let (pb, cb) = samples.of(curve, b);
+            let point =
+                |c: Option<Power<P>>, span, t| c.map_or_else(|| curve.point(span, t), |c| c.at(t));
+            let slope = |c: Option<Power<P>>, span, t| {
+                c.map_or_else(|| curve.tangent(span, t), |c| c.slope(t))
+            };
+            nearest(
+                (&pa, |u| point(ca, a, u), |u| slope(ca, a, u)),
+                (pb, |v| point(cb, b, v), |v| slope(cb, b, v)),
+                gap,
+            )
         };
         let Some((u, v)) = found else {
-            return Some(zero);
+            return zero;
         };
-        let d = between(u, v);
+        let g = Weights::of(curve, a, u).minus(&Weights::of(curve, b, v));
+        let d = point_of(pos, g.entries());
         let dist = d.length();
         // Two spans that cross exactly give no direction to part them: the next substep will.
         if !(dist < gap && dist > gap * P::Scalar::ratio(1, 1024)) {
-            return Some(zero);
+            return zero;
         }
         let normal = d * (P::Scalar::ONE / dist);
-        let (mut wa, mut wb) = ([zero; K], [zero; K]);
-        curve.weights(a, u, &mut wa);
-        curve.weights(b, v, &mut wb);
-        let g = |i: usize| wa[i] - wb[i];
-        let parted = parting(normal, gap - dist, point_of(vel, g), (friction, h));
-        // `None`: no free particle moves the pair (both spans held), nothing to undo.
-        if spread(pos, vel, inv_mass, g, parted).is_none() {
-            return Some(zero);
+        let parted = parting(
+            normal,
+            gap - dist,
+            point_of(vel, g.entries()),
+            (friction, h),
+        );
+        // `None`: no free particle moves the pair (both spans held).
+        match spread(pos, vel, inv_mass, g.entries(), parted) {
+            Some(_) => gap - dist,
+            None => zero,
         }
-        curve.rebuild(pos).then_some(gap - dist)
     }
 
     /// Keeps every two cells of the surface drawn through a `U × V` grid (`pos`, row by row)
@@ -166,7 +260,8 @@ impl<P: Point> Contacts<'_, P> {
             }
             let g = |i: usize| at_a.wu[i % U] * at_a.wv[i / U] - at_b.wu[i % U] * at_b.wv[i / U];
             let normal = d * (P::Scalar::ONE / dist);
-            let parted = parting(normal, gap - dist, point_of(vel, g), (friction, h));
+            let g = (0..U * V).map(|i| (i, g(i)));
+            let parted = parting(normal, gap - dist, point_of(vel, g.clone()), (friction, h));
             if spread(pos, vel, inv_mass, g, parted).is_some() {
                 deepest = deepest.max(gap - dist);
             }
@@ -363,167 +458,132 @@ fn nearest_on_cells<P: Point>(
 }
 
 /// The parameters `(u, v)` in `[0, 1]²` of the nearest points of two spans, `a(u)` and
-/// `b(v)`. Each span is cut into [`CHORDS`] chords; the [`SEEDS`] chord pairs nearest each
-/// other (measured exactly, segment to segment: two spans that cross have chords that nearly
-/// cross) seed [`NEWTON_STEPS`] Gauss-Newton steps, then a pattern search in 8 directions
-/// from a step of 1/64 down to 1/4096 of a span (at most [`SEARCH_ROUNDS`] rounds); the
-/// nearest result wins. `None`, without the search, when no chord pair comes within `gap`
-/// plus half the longest chord: the spans are apart.
-fn nearest<P: Point>(
-    a: impl Fn(P::Scalar) -> P,
-    b: impl Fn(P::Scalar) -> P,
+/// `b(v)` with tangents `ta` and `tb`, from their points `pa` and `pb` at [`SAMPLES`] + 1
+/// even steps: the nearest sample pair (squared distances: no root) seeds at most
+/// [`NEWTON_STEPS`] Gauss-Newton steps on `a(u) − b(v)` with the spans' exact tangents,
+/// stopped once a step moves less than 1/4096 of a span; the nearest point pair met wins.
+/// `None`, without the steps, when no sample pair comes within `gap` plus twice the longest
+/// step between samples: the spans are apart. Cost: `(SAMPLES + 1)²` squared distances, and 2
+/// points and 2 tangents a step.
+fn nearest<P: Point, const M: usize>(
+    (pa, a, ta): (&[P; M], impl Fn(P::Scalar) -> P, impl Fn(P::Scalar) -> P),
+    (pb, b, tb): (&[P; M], impl Fn(P::Scalar) -> P, impl Fn(P::Scalar) -> P),
     gap: P::Scalar,
 ) -> Option<(P::Scalar, P::Scalar)> {
-    let at = |k: usize| P::Scalar::ratio(k as u32, CHORDS as u32);
-    let pa: [P; CHORDS + 1] = core::array::from_fn(|k| a(at(k)));
-    let pb: [P; CHORDS + 1] = core::array::from_fn(|k| b(at(k)));
-    let longest = pa
+    let zero = P::Scalar::ZERO;
+    let at = |k: usize| P::Scalar::ratio(k as u32, (M - 1) as u32);
+    let d2 = |p: P| p.dot(p);
+    let longest2 = pa
         .windows(2)
         .chain(pb.windows(2))
-        .map(|c| (c[1] - c[0]).length())
-        .fold(P::Scalar::ZERO, P::Scalar::max);
-    // The nearest chord pairs, nearest first: (distance, u, v).
-    let mut seeds: [Option<Near<P::Scalar>>; SEEDS] = [None; SEEDS];
-    for i in 0..CHORDS {
-        for j in 0..CHORDS {
-            let (s, t, d) = segments_nearest((pa[i], pa[i + 1]), (pb[j], pb[j + 1]));
-            if d >= gap + longest / P::Scalar::from_i16(2) {
-                continue;
-            }
-            let mut seed = Some((d, at(i) + s * at(1), at(j) + t * at(1)));
-            for slot in &mut seeds {
-                if slot.is_none_or(|kept| seed.is_some_and(|new| new.0 < kept.0)) {
-                    core::mem::swap(slot, &mut seed);
-                }
+        .map(|c| d2(c[1] - c[0]))
+        .fold(zero, P::Scalar::max);
+    let (mut best, mut i, mut j) = (d2(pa[0] - pb[0]), 0, 0);
+    for (k, &x) in pa.iter().enumerate() {
+        for (l, &y) in pb.iter().enumerate() {
+            let d = d2(x - y);
+            if d < best {
+                (best, i, j) = (d, k, l);
             }
         }
     }
-    let distance = |u, v| (a(u) - b(v)).length();
-    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
-    let clamp = |x: P::Scalar| x.max(zero).min(one);
-    let mut found: Option<Near<P::Scalar>> = None;
-    for (_, u0, v0) in seeds.into_iter().flatten() {
-        let mut best = (distance(u0, v0), u0, v0);
-        // Gauss-Newton on `a(u) - b(v)`, with the spans' tangents from central differences.
-        let e = P::Scalar::ratio(1, 64);
-        let tangent = |f: &dyn Fn(P::Scalar) -> P, t: P::Scalar| {
-            let (lo, hi) = (clamp(t - e), clamp(t + e));
-            (f(hi) - f(lo)) * (one / (hi - lo))
+    // A point of a span is within half the arc between two samples of one of them, and an
+    // arc that bends is longer than its chord: twice the longest chord bounds both halves.
+    let reach = gap + longest2.sqrt() * P::Scalar::from_i16(2);
+    if best >= reach * reach {
+        return None;
+    }
+    let (mut u, mut v) = (at(i), at(j));
+    let mut found = (best, u, v);
+    let small = P::Scalar::ratio(1, 4096);
+    for _ in 0..NEWTON_STEPS {
+        let Some((nu, nv)) = newton_step(a(u) - b(v), (ta(u), tb(v)), (u, v)) else {
+            break;
         };
-        let (mut u, mut v) = (u0, v0);
-        for _ in 0..NEWTON_STEPS {
-            let f = a(u) - b(v);
-            let (ta, tb) = (tangent(&a, u), tangent(&b, v));
-            let (aa, bb, ab) = (ta.dot(ta), tb.dot(tb), ta.dot(tb));
-            let det = aa * bb - ab * ab;
-            // Spans side by side have no one nearest pair: the pattern search walks along.
-            if det <= aa * bb * P::Scalar::ratio(1, 1024) {
-                break;
-            }
-            let (r1, r2) = (-ta.dot(f), tb.dot(f));
-            (u, v) = (
-                clamp(u + (r1 * bb + ab * r2) / det),
-                clamp(v + (aa * r2 + ab * r1) / det),
-            );
-            let d = distance(u, v);
-            if d < best.0 {
-                best = (d, u, v);
-            }
+        let moved = (nu - u).abs().max((nv - v).abs());
+        (u, v) = (nu, nv);
+        let d = d2(a(u) - b(v));
+        if d < found.0 {
+            found = (d, u, v);
         }
-        // A pattern search finishes it: the step halves only when no direction improves, so
-        // it can walk along a valley.
-        let mut step = P::Scalar::ratio(1, 64);
-        for _ in 0..SEARCH_ROUNDS {
-            let (d0, u, v) = best;
-            for (du, dv) in DIRECTIONS {
-                let (nu, nv) = (
-                    clamp(u + step * P::Scalar::from_i16(du)),
-                    clamp(v + step * P::Scalar::from_i16(dv)),
-                );
-                let d = distance(nu, nv);
-                if d < best.0 {
-                    best = (d, nu, nv);
-                }
-            }
-            if best.0 >= d0 {
-                step = step * P::Scalar::ratio(1, 2);
-                if step < P::Scalar::ratio(1, 4096) {
-                    break;
-                }
-            }
-        }
-        if found.is_none_or(|f| best.0 < f.0) {
-            found = Some(best);
+        if moved < small {
+            break;
         }
     }
-    found.map(|(_, u, v)| (u, v))
+    Some((found.1, found.2))
 }
 
-/// A distance between two spans and the parameters `(u, v)` where they are that far apart.
-type Near<S> = (S, S, S);
+/// One Gauss-Newton step on `f = a(u) − b(v)` with the spans' tangents `(ta, tb)` there,
+/// towards their nearest points, clamped to `[0, 1]²` (one step on each parameter alone
+/// where the spans lie side by side); `None` when a tangent vanishes.
+fn newton_step<P: Point>(
+    f: P,
+    (ta, tb): (P, P),
+    (u, v): (P::Scalar, P::Scalar),
+) -> Option<(P::Scalar, P::Scalar)> {
+    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
+    let (aa, bb, ab) = (ta.dot(ta), tb.dot(tb), ta.dot(tb));
+    let (r1, r2) = (-ta.dot(f), tb.dot(f));
+    let det = aa * bb - ab * ab;
+    let (nu, nv) = if det > aa * bb * P::Scalar::ratio(1, 1024) {
+        (u + (r1 * bb + ab * r2) / det, v + (aa * r2 + ab * r1) / det)
+    } else if aa > zero && bb > zero {
+        // Side by side: no one nearest pair; slide each point to its nearest on the other.
+        (u + r1 / aa, v + r2 / bb)
+    } else {
+        return None;
+    };
+    let clamp = |x: P::Scalar| x.max(zero).min(one);
+    Some((clamp(nu), clamp(nv)))
+}
 
-/// Chords a span is sampled into to seed the search.
-const CHORDS: usize = 8;
-/// The nearest chord pairs the search starts from.
-const SEEDS: usize = 2;
-/// Gauss-Newton steps from each seed at most.
+/// Steps a span is sampled in to seed the search for its nearest points to another.
+const SAMPLES: usize = 4;
+/// Gauss-Newton steps from the nearest sample pair at most.
 const NEWTON_STEPS: usize = 4;
-/// Rounds of the pattern search at most: 9 halvings and the moves between them.
-const SEARCH_ROUNDS: usize = 12;
+/// The nearest cell-sample pairs the surface search starts from.
+const SEEDS: usize = 2;
 /// Rounds of the pattern search on two surface cells at most: 8 halvings and the moves
 /// between them.
 const CELL_ROUNDS: usize = 16;
-/// The pattern search's directions: the axes and the diagonals (which follow the valley of
-/// two spans lying side by side).
-const DIRECTIONS: [(i16, i16); 8] = [
-    (1, 0),
-    (-1, 0),
-    (0, 1),
-    (0, -1),
-    (1, 1),
-    (-1, -1),
-    (1, -1),
-    (-1, 1),
-];
 
-/// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the distance
-/// (the clamped closest points of the two lines, then each end against the other segment).
-/// Always inlined: it is the inner loop of [`nearest`]'s 64 chord pairs.
-#[inline(always)]
+/// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the squared
+/// distance (the clamped closest points of the two lines, then each end against the other
+/// segment; no root).
 fn segments_nearest<P: Point>(
     (p0, p1): (P, P),
     (q0, q1): (P, P),
 ) -> (P::Scalar, P::Scalar, P::Scalar) {
     let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
     let clamp = |x: P::Scalar| x.max(zero).min(one);
-    // The parameter on segment `a + t (b - a)` nearest `x`.
-    let onto = |x: P, a: P, ab: P| {
-        let len2 = ab.dot(ab);
-        if len2 > zero {
-            clamp((x - a).dot(ab) / len2)
-        } else {
-            zero
-        }
+    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
+    let (a, b, e) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
+    let (c, f) = (d1.dot(r), d2.dot(r));
+    // The parameter nearest a point on each segment: its projection over the squared length
+    // (one division a segment; a point segment has only its start).
+    let (over_a, over_e) = (
+        if a > zero { one / a } else { zero },
+        if e > zero { one / e } else { zero },
+    );
+    let at = |s: P::Scalar, t: P::Scalar| {
+        let d = p0 + d1 * s - (q0 + d2 * t);
+        (s, t, d.dot(d))
     };
-    let (d1, d2) = (p1 - p0, q1 - q0);
-    let at = |s: P::Scalar, t: P::Scalar| (s, t, (p0 + d1 * s - (q0 + d2 * t)).length());
-    let mut best = at(zero, onto(p0, q0, d2));
+    // Each end against the other segment: `(p·d)` of the end less that segment's start.
+    let mut best = at(zero, clamp(f * over_e));
     for candidate in [
-        at(one, onto(p1, q0, d2)),
-        at(onto(q0, p0, d1), zero),
-        at(onto(q1, p0, d1), one),
+        at(one, clamp((f + b) * over_e)),
+        at(clamp(-c * over_a), zero),
+        at(clamp((b - c) * over_a), one),
     ] {
         if candidate.2 < best.2 {
             best = candidate;
         }
     }
-    let r = p0 - q0;
-    let (a, b, e) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
-    let (c, f) = (d1.dot(r), d2.dot(r));
     let denom = a * e - b * b;
     if denom > zero && e > zero {
         let s = clamp((b * f - c * e) / denom);
-        let t = clamp((b * s + f) / e);
+        let t = clamp((b * s + f) * over_e);
         let inner = at(s, t);
         if inner.2 < best.2 {
             best = inner;

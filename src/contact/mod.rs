@@ -75,7 +75,7 @@ use crate::physics::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
 use collider::Collider;
 pub(crate) use drawn::DrawnSpans;
-use drawn::{Rebuilt, SurfacePoint, deepest_in_cell, point_inv_mass, point_of, spread};
+use drawn::{Rebuilt, SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
@@ -344,12 +344,20 @@ impl<'a, P: Point> Contacts<'a, P> {
         self.touch
     }
 
-    /// Substeps per second that keep every point, against every collider, within the
-    /// thickness and the collider's [`depth`](Collider::depth) of its previous place (so that
-    /// nothing passes through a collider or out of its far side), and, with self-contact,
-    /// two parts of a rope within the thickness; for particle speeds up to `speed` (0 when
-    /// the thickness is 0); `surface` when the drawn points are a surface's.
-    pub(crate) fn rate(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
+    /// Substeps per second that keep every point, against every collider it can reach this
+    /// frame, within the thickness and the collider's [`depth`](Collider::depth) of its
+    /// previous place (so that nothing passes through a collider or out of its far side),
+    /// and, with self-contact, two parts of a rope within the thickness; for particle speeds
+    /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
+    /// surface's. `object` holds what is drawn at the frame's start: a collider whose path
+    /// over the `dt` seconds (from where its velocity puts it at the start to its place at
+    /// the end) stays further from it than the thickness and what `speed` covers in `dt`
+    /// cannot be touched this frame and asks for no substeps.
+    pub(crate) fn rate(
+        &self,
+        (speed, surface): (P::Scalar, bool),
+        (object, dt): (Aabb<P>, P::Scalar),
+    ) -> P::Scalar {
         if self.thickness <= P::Scalar::ZERO {
             return P::Scalar::ZERO;
         }
@@ -366,7 +374,12 @@ impl<'a, P: Point> Contacts<'a, P> {
             (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
             _ => speed,
         };
+        let within = object.grown(self.thickness + reach * dt);
         let colliders = self.colliders.iter().fold(P::Scalar::ZERO, |rate, c| {
+            let end = c.bounds();
+            if !end.union(end.moved(-(c.velocity() * dt))).overlaps(&within) {
+                return rate;
+            }
             let allowed = self.thickness + c.depth();
             rate.max((reach + c.velocity().length()) / allowed)
         });
@@ -518,12 +531,13 @@ impl<'a, P: Point> Contacts<'a, P> {
         });
     }
 
-    /// Runs `round` (the colliders, then self-contact: the deepest overlap it left, or `None`
-    /// to stop) until no part is within 1/256 of the gap of another, at most
-    /// [`SELF_ROUNDS`] times: with self-contact a pile is a stack of contacts on contacts,
-    /// each push undoing part of its neighbours'. Without self-contact, one round.
+    /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
+    /// to stop) until no two parts overlapped by more than 1/100 of the gap between them
+    /// (the tolerance of the self-contact guarantee), at most [`SELF_ROUNDS`] times: with
+    /// self-contact a pile is a stack of contacts on contacts, each push undoing part of its
+    /// neighbours'. Without self-contact, one round.
     fn rounds(&self, mut round: impl FnMut() -> Option<P::Scalar>) {
-        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 256);
+        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 100);
         for _ in 0..SELF_ROUNDS {
             match round() {
                 Some(deepest) if deepest > settled => {}
@@ -542,7 +556,6 @@ impl<'a, P: Point> Contacts<'a, P> {
         (h, lag): (P::Scalar, P::Scalar),
         curve: &mut impl DrawnSpans<P, K>,
     ) -> bool {
-        let mut weights = [P::Scalar::ZERO; K];
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = self.offset(k, collider, lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
@@ -556,9 +569,9 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 let t = curve.deepest(span, |x| collider.search_key(x + shift, scale));
                 let x = curve.point(span, t);
-                curve.weights(span, t, &mut weights);
-                let v = point_of(vel, |i| weights[i]);
-                let Some(w) = point_inv_mass(inv_mass, |i| weights[i]) else {
+                let weights = Weights::of(&*curve, span, t);
+                let v = point_of(vel, weights.entries());
+                let Some(w) = point_inv_mass(inv_mass, weights.entries()) else {
                     continue;
                 };
                 let body = self.body(k, collider);
@@ -566,7 +579,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 else {
                     continue;
                 };
-                if let Some(given) = spread(pos, vel, inv_mass, |i| weights[i], (dx, dv)) {
+                if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
                     self.report(k, given, moved);
                 }
                 if !curve.rebuild(pos) {
@@ -672,8 +685,8 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 surface.at((cu, cv), (u, v));
                 let (x, v) = (surface.point(pos), surface.point(vel));
-                let w = |i: usize| surface.wu[i % U] * surface.wv[i / U];
-                let Some(mobility) = point_inv_mass(inv_mass, w) else {
+                let w = (0..U * V).map(|i| (i, surface.wu[i % U] * surface.wv[i / U]));
+                let Some(mobility) = point_inv_mass(inv_mass, w.clone()) else {
                     continue;
                 };
                 let body = self.body(k, collider);

@@ -1,13 +1,13 @@
 //! A mass-spring step that ends each substep with the contacts: the systems' side of
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
-use super::Contacts;
+use super::{Contacts, Touch};
 use crate::physics::force::ForceField;
 use crate::physics::integrator::{Integrator, State};
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
 use crate::physics::system::StepInfo;
-use crate::{Error, MassSpring, Point};
+use crate::{Aabb, Error, MassSpring, Point, Scalar};
 
 impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, Sh, T, I> {
     /// As [`step_with`](Self::step_with), resolving `contacts` at the particles after every
@@ -52,6 +52,22 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         })
     }
 
+    /// A box that holds what `touch` tests: the particles' box, grown for a drawn curve or
+    /// surface by the longest step between particles next in memory (a spline's bulge past
+    /// its particles is a fraction of its spacing).
+    fn drawn_bounds(&self, touch: Touch) -> Aabb<P> {
+        let x = self.positions();
+        let b = Aabb::from_points(x).unwrap_or(Aabb::point(P::default()));
+        if touch == Touch::Particles {
+            return b;
+        }
+        let longest = x
+            .windows(2)
+            .map(|w| (w[1] - w[0]).length())
+            .fold(P::Scalar::ZERO, P::Scalar::max);
+        b.grown(longest)
+    }
+
     /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the
     /// substeps the contacts ask for (`surface`: the drawn points are a surface's), reporting
     /// impulses when `contacts` asks for them.
@@ -63,7 +79,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         surface: bool,
         resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let floor = contacts.rate(self.top_speed(dt), surface);
+        let floor = contacts.rate(
+            (self.top_speed(dt), surface),
+            (self.drawn_bounds(contacts.touch()), dt),
+        );
         contacts.clear_pushes();
         let mut resolve = resolve;
         let resolve = |state: &mut State<P, Sh>,

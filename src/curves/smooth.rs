@@ -433,6 +433,16 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         }
     }
 
+    /// The derivative `dP/dt` of span `span` at `t` (as [`point`](Self::point)): 5 lerps
+    /// for a cubic span.
+    pub(crate) fn tangent(&self, span: usize, t: P::Scalar) -> P {
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.tangent(t),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].tangent(t),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].tangent(t),
+        }
+    }
+
     /// The parameter of span `span` whose point has the least `key`: see
     /// [`Bezier::deepest`](crate::Bezier). Halving only (no multiplication in `Q16`).
     pub(crate) fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {

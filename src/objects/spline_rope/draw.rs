@@ -72,6 +72,12 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
     fn point(&self, span: usize, t: P::Scalar) -> P {
         self.spans[span].eval(t)
     }
+    fn tangent(&self, span: usize, t: P::Scalar) -> P {
+        self.spans[span].tangent(t)
+    }
+    fn cubic(&self, span: usize) -> Option<[P; 4]> {
+        Some(*self.spans[span].points())
+    }
     /// The Bernstein weights at `t` through the span's extraction.
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
         let mut bernstein = [P::Scalar::ZERO; 4];

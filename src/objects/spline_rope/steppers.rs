@@ -500,8 +500,13 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 .iter()
                 .map(|v| v.length())
                 .fold(P::Scalar::ZERO, P::Scalar::max);
-            // The curve's points move as weighted means of the control points.
-            c.rate(fastest + self.settings.gravity.length() * dt, false)
+            // The curve's points move as weighted means of the control points, and lie in
+            // their box.
+            let object = Aabb::from_points(&self.pos).unwrap_or(Aabb::point(P::default()));
+            c.rate(
+                (fastest + self.settings.gravity.length() * dt, false),
+                (object, dt),
+            )
         });
         // `Q16`'s one linearized Newton step keeps its precision while the rate times the
         // step is at most 8 (see `within_precision`): past it, substeps (never slow motion).
