@@ -38,6 +38,12 @@
 //! a sweep over their control-point boxes (the convex hull property) and pushed apart
 //! through both points' particle weights.
 //!
+//! **Reach.** A collider whose path over the frame (from where its velocity puts it at the
+//! frame's start to its place at the end) stays further from the drawn object's box than
+//! the thickness and what the object's fastest point covers in the frame cannot be touched
+//! this frame: it asks for no substeps, and when no collider can be touched and
+//! self-contact is off the frame tests no contact at all.
+//!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
 //! rope or cloth gave each collider and, for a collider with a mass
 //! ([`Collider::with_mass`]), how far its body was moved: add them to the velocity (divided
@@ -162,19 +168,21 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// The spans that can touch are found from their control points' boxes (the convex hull
     /// property): sorted and swept along x, so the cost grows with the spans that are near
     /// each other, not with the square of the spans. Each pair near each other takes a
-    /// search for its nearest points (8 chords a span, then Gauss-Newton and a pattern
-    /// search) and a push through both spans' particle weights; a pile is a stack of such
-    /// contacts, so colliders and self-contact take up to 12 rounds a substep, until no part
-    /// is within 1/256 of the diameter of another. A step with self-contact takes substeps for
-    /// twice the particles' top speed (two parts of the rope can meet head on).
+    /// search for its nearest points (the nearest of the two spans' 5 samples, each span
+    /// sampled once for all its pairs, then up to 4 Gauss-Newton steps with the spans' exact
+    /// tangents; an exact segment-to-segment distance for straight spans) and a push through
+    /// the particles that weigh in both points; a pile is a stack of such contacts, so
+    /// colliders and self-contact take up to 12 rounds a substep, until no overlap is over
+    /// 1% of the diameter. A step with self-contact takes substeps for twice the particles'
+    /// top speed (two parts of the rope can meet head on).
     ///
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
-    /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D
-    /// rope falling into a pile on a floor never has two spans closer than the diameter less
-    /// 1% over 10 s (0.96% at the closest); lying straight on the floor, self-contact adds
-    /// 0.9 to 1.7 times the rope's step to a frame (six runs); settled in a pile, where
-    /// about 40 pairs of spans are near each other, 3 500 to 3 700 times (2.8 to 2.9 ms a
-    /// frame on the development machine): a heap of rope is costly, keep its particles few.
+    /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
+    /// floor never has two spans closer than the diameter less 1% over 10 s; settled in that
+    /// pile, where about 40 pairs of spans are near each other, the floor and self-contact
+    /// together cost about 200 times the rope's bare step (0.5 ms a frame on the development
+    /// machine, where the search of 64 chord pairs a pair that this replaced cost 3 400
+    /// times): a heap of rope is costly, keep its particles few.
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -344,24 +352,11 @@ impl<'a, P: Point> Contacts<'a, P> {
         self.touch
     }
 
-    /// Substeps per second that keep every point, against every collider it can reach this
-    /// frame, within the thickness and the collider's [`depth`](Collider::depth) of its
-    /// previous place (so that nothing passes through a collider or out of its far side),
-    /// and, with self-contact, two parts of a rope within the thickness; for particle speeds
-    /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
-    /// surface's. `object` holds what is drawn at the frame's start: a collider whose path
-    /// over the `dt` seconds (from where its velocity puts it at the start to its place at
-    /// the end) stays further from it than the thickness and what `speed` covers in `dt`
-    /// cannot be touched this frame and asks for no substeps.
-    pub(crate) fn rate(
-        &self,
-        (speed, surface): (P::Scalar, bool),
-        (object, dt): (Aabb<P>, P::Scalar),
-    ) -> P::Scalar {
-        if self.thickness <= P::Scalar::ZERO {
-            return P::Scalar::ZERO;
-        }
-        let reach = match (self.touch, surface) {
+    /// How fast the points touched can move for particle speeds up to `speed` (`surface`:
+    /// the drawn points are a surface's): Catmull-Rom's drawn points up to 5/4 as fast as
+    /// its particles on a curve, 25/16 on a surface; the natural spline's 31/20 and 5/2.
+    fn point_speed(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
+        match (self.touch, surface) {
             (
                 Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom),
                 false,
@@ -373,11 +368,27 @@ impl<'a, P: Point> Contacts<'a, P> {
             ) => speed * P::Scalar::ratio(31, 20),
             (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
             _ => speed,
-        };
-        let within = object.grown(self.thickness + reach * dt);
+        }
+    }
+
+    /// Substeps per second that keep every point, against every collider it can reach this
+    /// frame, within the thickness and the collider's [`depth`](Collider::depth) of its
+    /// previous place (so that nothing passes through a collider or out of its far side),
+    /// and, with self-contact, two parts of a rope within the thickness; for particle speeds
+    /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
+    /// surface's. `object` holds what is drawn at the frame's start: a collider that is not
+    /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps.
+    pub(crate) fn rate(
+        &self,
+        (speed, surface): (P::Scalar, bool),
+        (object, dt): (Aabb<P>, P::Scalar),
+    ) -> P::Scalar {
+        if self.thickness <= P::Scalar::ZERO {
+            return P::Scalar::ZERO;
+        }
+        let reach = self.point_speed(speed, surface);
         let colliders = self.colliders.iter().fold(P::Scalar::ZERO, |rate, c| {
-            let end = c.bounds();
-            if !end.union(end.moved(-(c.velocity() * dt))).overlaps(&within) {
+            if !self.reachable(c, (object, reach), dt) {
                 return rate;
             }
             let allowed = self.thickness + c.depth();
@@ -389,6 +400,36 @@ impl<'a, P: Point> Contacts<'a, P> {
         } else {
             colliders
         }
+    }
+
+    /// Whether `c` can touch within `dt` seconds what `object` holds, its points moving up
+    /// to `reach` a second: its path over the frame (from where its velocity puts it at the
+    /// start to its place at the end) comes within the thickness and that reach of it.
+    fn reachable(
+        &self,
+        c: &Collider<P>,
+        (object, reach): (Aabb<P>, P::Scalar),
+        dt: P::Scalar,
+    ) -> bool {
+        let end = c.bounds();
+        let path = end.union(end.moved(-(c.velocity() * dt)));
+        path.overlaps(&object.grown(self.thickness + reach * dt))
+    }
+
+    /// Whether anything can touch what `object` holds within `dt` seconds, for particle
+    /// speeds up to `speed` (`surface` as in [`rate`](Self::rate)): self-contact is on, or a
+    /// collider is [`reachable`](Self::reachable).
+    pub(crate) fn can_touch(
+        &self,
+        (speed, surface): (P::Scalar, bool),
+        (object, dt): (Aabb<P>, P::Scalar),
+    ) -> bool {
+        let reach = self.point_speed(speed, surface);
+        self.self_friction.is_some()
+            || self
+                .colliders
+                .iter()
+                .any(|c| self.reachable(c, (object, reach), dt))
     }
 
     /// Pushes every particle with a mass out of every collider. `lag`: seconds from this

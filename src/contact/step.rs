@@ -53,19 +53,18 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     /// A box that holds what `touch` tests: the particles' box, grown for a drawn curve or
-    /// surface by the longest step between particles next in memory (a spline's bulge past
-    /// its particles is a fraction of its spacing).
+    /// surface by the largest coordinate step between particles next in memory (a spline
+    /// bulges past its particles by a fraction of its spacing along each axis). No root.
     fn drawn_bounds(&self, touch: Touch) -> Aabb<P> {
         let x = self.positions();
         let b = Aabb::from_points(x).unwrap_or(Aabb::point(P::default()));
         if touch == Touch::Particles {
             return b;
         }
-        let longest = x
-            .windows(2)
-            .map(|w| (w[1] - w[0]).length())
-            .fold(P::Scalar::ZERO, P::Scalar::max);
-        b.grown(longest)
+        let step = x.windows(2).fold(P::Scalar::ZERO, |most, w| {
+            (0..P::DIM).fold(most, |most, d| most.max((w[1].coord(d) - w[0].coord(d)).abs()))
+        });
+        b.grown(step)
     }
 
     /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the
@@ -79,11 +78,21 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         surface: bool,
         resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let floor = contacts.rate(
+        let (speed, object) = (
             (self.top_speed(dt), surface),
             (self.drawn_bounds(contacts.touch()), dt),
         );
         contacts.clear_pushes();
+        // Nothing within reach this frame: a plain step, with no contacts to test.
+        if !contacts.can_touch(speed, object) {
+            return contacts.finish_report(self.step_resolving(
+                dt,
+                forces,
+                P::Scalar::ZERO,
+                |_, _, _| {},
+            ));
+        }
+        let floor = contacts.rate(speed, object);
         let mut resolve = resolve;
         let resolve = |state: &mut State<P, Sh>,
                        w: &Sh::PerParticle<P::Scalar>,

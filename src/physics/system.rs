@@ -552,9 +552,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         let fastest = self
             .velocities()
             .iter()
-            .map(|v| v.length())
+            .map(|v| v.dot(*v))
             .fold(P::Scalar::ZERO, P::Scalar::max);
-        fastest + self.settings.gravity.length() * dt
+        fastest.sqrt() + self.settings.gravity.length() * dt
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
