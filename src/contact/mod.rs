@@ -29,9 +29,9 @@
 //!   `(w_i / m_i) · d / Σ_j w_j² / m_j`: the smallest mass-weighted change that moves the
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
-//!   spacing; a collider the drawn rope touches costs about 4× what it costs at the
-//!   particles (`docs/summary.md` (g): 1 458 against 389 ns a frame for an 8-particle rope
-//!   on a peg).
+//!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
+//!   the particles (`docs/summary.md` (g): 2 668 against 743 ns a frame for an 8-particle
+//!   rope on a peg).
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
 //! surface off itself: spans (cells) that are not neighbours stay a diameter apart, found by
