@@ -62,7 +62,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return b;
         }
         let step = x.windows(2).fold(P::Scalar::ZERO, |most, w| {
-            (0..P::DIM).fold(most, |most, d| most.max((w[1].coord(d) - w[0].coord(d)).abs()))
+            (0..P::DIM).fold(most, |most, d| {
+                most.max((w[1].coord(d) - w[0].coord(d)).abs())
+            })
         });
         b.grown(step)
     }
