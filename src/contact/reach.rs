@@ -1,0 +1,89 @@
+//! What a frame can reach: the substeps the colliders and self-contact ask for, and which
+//! colliders can be touched at all within the frame ([`Contacts`]' broad phase in time).
+
+use super::{Contacts, Touch};
+use crate::collider::Collider;
+use crate::curves::smooth::Smoothing;
+use crate::{Aabb, Point, Scalar};
+
+impl<P: Point> Contacts<'_, P> {
+    /// How fast the points touched can move for particle speeds up to `speed` (`surface`:
+    /// the drawn points are a surface's): Catmull-Rom's drawn points up to 5/4 as fast as
+    /// its particles on a curve, 25/16 on a surface; the natural spline's 31/20 and 5/2.
+    fn point_speed(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
+        match (self.touch, surface) {
+            (
+                Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom),
+                false,
+            ) => speed * P::Scalar::ratio(5, 4),
+            (Touch::Drawn(Smoothing::CatmullRom), true) => speed * P::Scalar::ratio(25, 16),
+            (
+                Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline),
+                false,
+            ) => speed * P::Scalar::ratio(31, 20),
+            (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
+            _ => speed,
+        }
+    }
+
+    /// Substeps per second that keep every point, against every collider it can reach this
+    /// frame, within the thickness and the collider's [`depth`](Collider::depth) of its
+    /// previous place (so that nothing passes through a collider or out of its far side),
+    /// and, with self-contact, two parts of a rope within the thickness; for particle speeds
+    /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
+    /// surface's. `object` holds what is drawn at the frame's start: a collider that is not
+    /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps.
+    pub(crate) fn rate(
+        &self,
+        (speed, surface): (P::Scalar, bool),
+        (object, dt): (Aabb<P>, P::Scalar),
+    ) -> P::Scalar {
+        if self.thickness <= P::Scalar::ZERO {
+            return P::Scalar::ZERO;
+        }
+        let reach = self.point_speed(speed, surface);
+        let colliders = self.colliders.iter().fold(P::Scalar::ZERO, |rate, c| {
+            if !self.reachable(c, (object, reach), dt) {
+                return rate;
+            }
+            let allowed = self.thickness + c.depth();
+            rate.max((reach + c.velocity().length()) / allowed)
+        });
+        // Two parts of a rope can meet head on.
+        if self.self_friction.is_some() {
+            colliders.max((reach + reach) / self.thickness)
+        } else {
+            colliders
+        }
+    }
+
+    /// Whether `c` can touch within `dt` seconds what `object` holds, its points moving up
+    /// to `reach` a second: its path over the frame (from where its velocity puts it at the
+    /// start to its place at the end) comes within the thickness and that reach of it.
+    fn reachable(
+        &self,
+        c: &Collider<P>,
+        (object, reach): (Aabb<P>, P::Scalar),
+        dt: P::Scalar,
+    ) -> bool {
+        let end = c.bounds();
+        let path = end.union(end.moved(-(c.velocity() * dt)));
+        path.overlaps(&object.grown(self.thickness + reach * dt))
+    }
+
+    /// Whether anything can touch what `object` holds within `dt` seconds, for particle
+    /// speeds up to `speed` (`surface` as in [`rate`](Self::rate)): self-contact is on, or a
+    /// collider is [`reachable`](Self::reachable).
+    pub(crate) fn can_touch(
+        &self,
+        (speed, surface): (P::Scalar, bool),
+        (object, dt): (Aabb<P>, P::Scalar),
+    ) -> bool {
+        let reach = self.point_speed(speed, surface);
+        self.self_friction.is_some()
+            || self
+                .colliders
+                .iter()
+                .any(|c| self.reachable(c, (object, reach), dt))
+    }
+}
