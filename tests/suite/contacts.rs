@@ -153,6 +153,33 @@ fn restitution_zero_adds_no_energy() {
     }
 }
 
+/// One 60 Hz frame of a ball (`mass`, `radius`, under `gravity`) and `rope`, coupled both
+/// ways as `Contacts::with_pushes` documents: gravity into the ball's velocity, the ball
+/// moved, the rope stepped against it as a body of that mass, then the push's shift and
+/// impulse taken back.
+fn coupled_frame<const K: usize>(
+    rope: &mut Rope<Vec2<f64>, K>,
+    (ball, velocity): (&mut Vec2<f64>, &mut Vec2<f64>),
+    (mass, radius, gravity): (f64, f64, f64),
+) {
+    let dt = 1.0 / 60.0;
+    let mut pushes = [Push::default(); 1];
+    *velocity += Vec2::new(0.0, -gravity * dt);
+    *ball += *velocity * dt;
+    let colliders = [Collider::ball(*ball, radius)
+        .unwrap()
+        .moving(*velocity)
+        .unwrap()
+        .with_mass(mass)
+        .unwrap()];
+    let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))
+        .unwrap()
+        .with_pushes(&mut pushes);
+    let _ = rope.step_touching(dt, (), &contacts).unwrap();
+    *ball += pushes[0].shift;
+    *velocity += pushes[0].impulse * (1.0 / mass);
+}
+
 /// A ball of `mass` and the rope (1 kg) it falls on, coupled both ways through the reported
 /// pushes: each frame the ball moves at its velocity, the rope steps against it as a body of
 /// that mass (`Collider::with_mass`), and the ball takes back the push the rope gave it
@@ -185,24 +212,13 @@ fn ball_on_rope(gravity: f64, pinned: bool, frames: usize, mass: f64) -> Vec<[Ve
     }
     let radius = 0.2; // a fifth of the particle spacing
     let (mut ball, mut velocity) = (Vec2::new(0.3, 1.5), Vec2::new(0.0, -3.0));
-    let dt = 1.0 / 60.0;
-    let mut pushes = [Push::default(); 1];
     let mut frames_out = vec![];
     for _ in 0..frames {
-        velocity += Vec2::new(0.0, -gravity * dt);
-        ball += velocity * dt;
-        let colliders = [Collider::ball(ball, radius)
-            .unwrap()
-            .moving(velocity)
-            .unwrap()
-            .with_mass(mass)
-            .unwrap()];
-        let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))
-            .unwrap()
-            .with_pushes(&mut pushes);
-        let _ = rope.step_touching(dt, (), &contacts).unwrap();
-        ball += pushes[0].shift;
-        velocity += pushes[0].impulse * (1.0 / mass);
+        coupled_frame(
+            &mut rope,
+            (&mut ball, &mut velocity),
+            (mass, radius, gravity),
+        );
         let rope_momentum = rope
             .velocities()
             .iter()
@@ -286,24 +302,9 @@ fn a_ball_up_to_5_times_the_rope_never_gains_energy() {
                 rope.energy() + mass * (0.5 * v.dot(v) + g * ball.y)
             };
             let (start, drop) = (energy(&rope, ball, velocity), mass * g * 1.2);
-            let dt = 1.0 / 60.0;
-            let mut pushes = [Push::default(); 1];
             let mut worst = f64::NEG_INFINITY;
             for _ in 0..600 {
-                velocity += Vec2::new(0.0, -g * dt);
-                ball += velocity * dt;
-                let colliders = [Collider::ball(ball, 0.18)
-                    .unwrap()
-                    .moving(velocity)
-                    .unwrap()
-                    .with_mass(mass)
-                    .unwrap()];
-                let contacts = Contacts::new(&colliders, 0.02, Touch::Drawn(Smoothing::BSpline))
-                    .unwrap()
-                    .with_pushes(&mut pushes);
-                let _ = rope.step_touching(dt, (), &contacts).unwrap();
-                ball += pushes[0].shift;
-                velocity += pushes[0].impulse * (1.0 / mass);
+                coupled_frame(&mut rope, (&mut ball, &mut velocity), (mass, 0.18, g));
                 worst = worst.max((energy(&rope, ball, velocity) - start) / drop);
             }
             assert!(
