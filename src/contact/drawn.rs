@@ -92,7 +92,7 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
 /// rising particle order: what reads and moves the point costs that many particles, not `K`.
 #[derive(Clone, Copy)]
 pub(super) struct Weights<S, const K: usize> {
-    index: [u16; K],
+    index: [usize; K],
     weight: [S; K],
     len: usize,
 }
@@ -152,7 +152,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
     /// Appends particle `i` at weight `x` unless it is zero (`i` past the last).
     fn push(&mut self, i: usize, x: S) {
         if x != S::ZERO && self.len < K {
-            (self.index[self.len], self.weight[self.len]) = (i as u16, x);
+            (self.index[self.len], self.weight[self.len]) = (i, x);
             self.len += 1;
         }
     }
@@ -162,7 +162,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
         self.index[..self.len]
             .iter()
             .zip(&self.weight[..self.len])
-            .map(|(&i, &x)| (usize::from(i), x))
+            .map(|(&i, &x)| (i, x))
     }
 }
 

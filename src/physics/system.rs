@@ -552,9 +552,10 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         let fastest = self
             .velocities()
             .iter()
-            .map(|v| v.dot(*v))
+            .map(|v| v.length())
             .fold(P::Scalar::ZERO, P::Scalar::max);
-        fastest.sqrt() + self.settings.gravity.length() * dt
+        // Lengths, not squares: a `Q16` square saturates past 181 units a second.
+        fastest + self.settings.gravity.length() * dt
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
