@@ -38,8 +38,8 @@ const INTEGRATORS: [(&str, AnyIntegrator); 8] = [
         "direct_springs",
         AnyIntegrator::DirectSprings(DirectSprings {
             iterations: 1,
-            substeps: 1,
-            keep_energy: false,
+            measure: false,
+            ..DirectSprings::default()
         }),
     ),
 ];

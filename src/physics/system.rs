@@ -39,10 +39,11 @@ pub struct StepInfo<S> {
     /// limits, checked once a step); they stay broken.
     pub snapped: u16,
     /// `false` when the step did not keep what its method promises: an iterating solve
-    /// ended beyond its tolerance after its last iteration and its last halving, or a link
-    /// that the method holds ended more than [`DirectChain::TOLERANCE`](crate::integrator::DirectChain::TOLERANCE) (0.1%) from its
-    /// length, after the contacts (see [`stretch`](Self::stretch)). The step is kept. `true`
-    /// for methods that neither iterate to a tolerance nor hold links.
+    /// ended beyond [`TOLERANCE`](crate::integrator::TOLERANCE) (0.1%) after its last
+    /// iteration (and, for a `DirectChain`, its last halving), or a link that the method
+    /// holds ended more than that from its length, after the contacts (see
+    /// [`residual`](Self::residual) and [`stretch`](Self::stretch)). The step is kept.
+    /// `true` for the methods that do not iterate (the explicit ones).
     pub converged: bool,
     /// For a method that holds its links at their rest length
     /// ([`Integrator::holds_links`]: an inextensible `DirectChain`), the largest
@@ -51,6 +52,17 @@ pub struct StepInfo<S> {
     /// methods whose links are springs (they stretch by design: measure them with
     /// [`MassSpring::positions`]).
     pub stretch: S,
+    /// How far the step's iterating solves ended from their equations, the largest over its
+    /// substeps, as a fraction (`converged` is `residual ≤ 0.001`):
+    /// - [`DirectSprings`](crate::integrator::DirectSprings),
+    ///   [`ImplicitEuler`](crate::integrator::ImplicitEuler) and
+    ///   [`Xpbd`](crate::integrator::Xpbd): the largest distance a particle still owes to
+    ///   backward Euler's equations (its force imbalance times `h²` over its mass), over
+    ///   the shortest rest length of a spring with a free end;
+    /// - [`DirectChain`](crate::integrator::DirectChain): the largest
+    ///   `|length − goal| / rest` of a link (its stretch when inextensible);
+    /// - the explicit methods: 0.
+    pub residual: S,
 }
 
 /// The largest stretch of a held link a step keeps (10%, as a fraction): a step of an
@@ -581,6 +593,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             snapped: self.snap(),
             converged: solved.converged,
             stretch: solved.stretch,
+            residual: solved.residual,
         })
     }
 
@@ -606,6 +619,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             snapped: self.snap(),
             converged: solved.converged,
             stretch: solved.stretch,
+            residual: solved.residual,
         })
     }
 

@@ -15,6 +15,7 @@ mod rope_scene;
 
 mod breaking;
 mod contacts;
+mod converge;
 mod evaluation;
 mod flatten;
 mod fuzz;

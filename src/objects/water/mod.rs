@@ -341,5 +341,6 @@ fn stepped<S: Scalar>(n: usize, h: S, slow_motion: bool) -> StepInfo<S> {
         snapped: 0,
         converged: true,
         stretch: S::ZERO,
+        residual: S::ZERO,
     }
 }

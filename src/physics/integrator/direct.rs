@@ -41,29 +41,37 @@ use core::cell::Cell;
 /// (`c ≤ 1 / (h (wa + wb))`).
 ///
 /// Measured (`tests/suite/physics.rs`, `direct_springs_*`; `docs/summary.md`, section (j)):
-/// - the boat scene's sail in a steady wind rests within 0.04 mm of the balance symplectic
-///   Euler reaches in `f64` (3.2 mm in `Q16`); a hanging rope sags as statics says at every
+/// - the boat scene's sail in a steady wind rests within 0.01 mm of the balance symplectic
+///   Euler reaches in `f64` (3.1 mm in `Q16`); a hanging rope sags as statics says at every
 ///   stiffness from 10² to 10⁸ N/m, one substep a frame;
-/// - it damps, as backward Euler does: an undamped released rope keeps 34% of its swing's
-///   energy over 10 s (17% to 22% with a bob of 1 to 10 times its mass), against 96% for
+/// - it damps, as backward Euler does: an undamped released rope keeps 16% of its swing's
+///   energy over 10 s (4% to 11% with a bob of 1 to 10 times its mass), against 96% for
 ///   symplectic Euler; with [`keep_energy`](Self::keep_energy) it keeps it whole;
-/// - motion that turns stiff springs is slowed: each iteration turns the springs' directions
-///   only part of the way, by about `m / (h² k)`. A 1 kg, 8×8 cloth of 900 N/m let go of all
-///   but one pin swings down 46% as far as it should in its first half second with one
-///   iteration, 86% with four; 10 times stiffer, 8% and 26%. For cloth that swings free,
-///   raise `iterations` or `substeps`; for a rope under a heavy bob, use
-///   [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m stretches it
-///   1.7% here).
+/// - motion that turns stiff springs is slowed (projective dynamics' locking): each
+///   iteration turns the springs' directions only part of the way, by about `m / (h² k)`.
+///   A 1 kg, 8×8 cloth of 900 N/m let go of all but one pin swings down 46% as far as it
+///   should in its first half second with one iteration, 86% with four; 10 times stiffer,
+///   8% and 26%. A measured solve says so ([`measure`](Self::measure)): a 1 m, 1 kg, 8×8
+///   cloth held level by two corners under a drag of 2/s, at the defaults, hangs 0.93 m
+///   below them after 10 s with axial stiffness `EA = 10³ N` and 0.90 m at `10⁴` (statics
+///   and symplectic Euler: 1.00 m), every frame reported unconverged; 64 iterations bring
+///   `10³` to 1.00 m. What it cannot turn in `iterations`, no setting here turns at one
+///   solve's cost: for cloth that swings free and stiff, use symplectic Euler's substeps;
+///   for a rope under a heavy bob, [`DirectChain`](super::DirectChain) (a 10 kg bob on a
+///   1 kg rope of 10⁵ N/m stretches it 2.0% here).
 ///
 /// Cost per solve, `n` particles of which `f` free, and band `b` (2 for a rope, `2U` for a
 /// cloth): a factor, when something changed, of two passes over the springs, a walk of
 /// about `n·2b` steps and about `f·b²/2` multiply-adds; per iteration a square root and a
 /// division a spring and `2·e` vector multiply-adds, `e ≤ f·b` the entries of the rows'
-/// envelopes (each row from its first spring). The same at every stiffness. A topology
-/// that lists its springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each
-/// run's numbers taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free,
-/// 378 entries) takes about 58 000 instructions a step, 44 400 of them the iteration, and
-/// 124 000 more for a new factor (`examples/mcu_sail.rs`). Memory: the factor, the
+/// envelopes (each row from its first spring), and the measure, a pass over the springs
+/// after each. Unmeasured, the same at every stiffness; measured, from 1 iteration where
+/// they converge at once to `iterations` where they do not. A topology that lists its
+/// springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers
+/// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
+/// with one iteration unmeasured, takes about 58 000 instructions a step, 44 400 of them
+/// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
+/// takes 100 000 on average, 134 000 measured and 193 000 at the defaults. Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -89,9 +97,21 @@ use core::cell::Cell;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectSprings {
-    /// Iterations a solve, each a spring direction update and a back-substitution (1 by
-    /// default); 0 counts as 1.
+    /// Most iterations a solve (4 by default; 0 counts as 1), each a spring direction
+    /// update and a back-substitution. With [`measure`](Self::measure), a solve stops as
+    /// soon as it is within [`TOLERANCE`](super::TOLERANCE).
     pub iterations: u8,
+    /// Whether each solve measures how far it ended from its equations (`true` by
+    /// default): what each free particle still owes to them (its force imbalance times
+    /// `h²` over its mass), over the shortest rest length of a spring with a free end. A
+    /// solve within [`TOLERANCE`](super::TOLERANCE) (0.1%) stops there; one that reaches
+    /// `iterations` beyond it reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
+    /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
+    /// over the springs (a square root and a division each) after each iteration: the
+    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 134 000 instructions
+    /// a frame measured and 100 000 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
+    /// solve takes all its `iterations` and reports `converged` with a residual of 0.
+    pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
     pub substeps: u8,
     /// Gives back, after each solve, the energy its own damping took from the motion
@@ -103,22 +123,23 @@ pub struct DirectSprings {
     /// takes; what a solve cannot give back (its particles nearly still) is owed to the
     /// next. Measured (`tests/suite/physics.rs`, `direct_springs_keep_energy_*`): an undamped
     /// released rope keeps its swing's energy within 1% over 10 s, with a bob of up to 10
-    /// times its mass too (34% without); a bob on a spring loses its energy to drag as
+    /// times its mass too (16% without); a bob on a spring loses its energy to drag as
     /// `e^(−γ t)` says within 15% over 4 s; the boat scene's sail rests within 0.001 mm of
-    /// its balance; with a drag of 0.1/s the released rope keeps 46% of its swing over 10 s
+    /// its balance; with a drag of 0.1/s the released rope keeps 50% of its swing over 10 s
     /// (symplectic Euler 35%, Verlet 41%: `docs/summary.md`, section (j)). The motion it
     /// keeps is livelier where stiff springs turn: a heavy bob stretches its rope as
     /// symplectic Euler's does. Costs two passes over the springs more a solve, a square
-    /// root a spring each (the 8-particle rope's frame 1.4 times as dear).
+    /// root a spring each (the 8-particle rope's frame 1.16 times as dear).
     pub keep_energy: bool,
 }
 
 impl Default for DirectSprings {
-    /// One solve of one iteration a step, its damping kept.
+    /// One solve a step of at most 4 iterations, its damping kept.
     fn default() -> Self {
         DirectSprings {
-            iterations: 1,
+            iterations: 4,
             substeps: 1,
+            measure: true,
             keep_energy: false,
         }
     }
@@ -170,11 +191,11 @@ impl Integrator for DirectSprings {
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> Solved<P::Scalar> {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            Solved::plain(if self.keep_energy {
+            if self.keep_energy {
                 self.solve_keeping(model, state, memory, hs, forces)
             } else {
                 self.solve(model, state, memory, hs, forces, None)
-            })
+            }
         };
         super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
     }
@@ -275,7 +296,7 @@ impl DirectSprings {
         memory: &mut Factored<P::Scalar, Sh>,
         h: P::Scalar,
         forces: &mut F,
-    ) -> bool {
+    ) -> Solved<P::Scalar> {
         // The motion's energy at the start, less what the springs' damping takes over the
         // solve, plus what earlier solves owe; where the particles started.
         let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
@@ -297,7 +318,7 @@ impl DirectSprings {
         h: P::Scalar,
         forces: &mut F,
         pushes: Option<&mut Sh::PerParticle<P>>,
-    ) -> bool {
+    ) -> Solved<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let w = model.inv_mass();
         // `h² k` as `(k h) h`: in `Q16`, `h²` of a frame is below the format's resolution.
@@ -347,15 +368,26 @@ impl DirectSprings {
         }
         let inv_h = P::Scalar::ONE / h;
         let fixed = P::Scalar::FIXED_POINT;
-        let iterations = self.iterations.max(1);
-        // A second iteration starts from the gap again: a copy, only then.
-        let mut gap = (iterations > 1).then_some(rhs);
+        let cap = self.iterations.max(1);
+        // Each iteration after the first starts from the gap again: a copy, only then.
+        let mut gap = if cap > 1 || self.measure {
+            Some(rhs)
+        } else {
+            None
+        };
         let mut solved = Sh::filled(P::default());
-        for iteration in 1..=iterations {
-            // Solved for the change of the positions so far: the right-hand side is
-            // `M (y − x)` and each spring's pull at `x`. A held particle is no row of the
+        // What the residual is measured against, and how far the particles ended from the
+        // solve's equations.
+        let shortest = self.measure.then(|| model.shortest_rest());
+        let mut solved_as = None;
+        // Unmeasured, `cap` passes over the springs, each followed by a solve; measured, one
+        // more that measures the last solve's result.
+        let passes = u16::from(cap) + u16::from(self.measure);
+        for iteration in 0..passes {
+            // The right-hand side at the positions so far: `M (y − x)` and each spring's
+            // pull at `x`, the solve's equations' imbalance. A held particle is no row of the
             // solve, so pulls are added to both ends unchecked.
-            if let (Some(gap), true) = (&gap, iteration > 1) {
+            if let (Some(gap), true) = (&gap, iteration > 0) {
                 rhs = *gap;
             }
             let r = Sh::flat_mut(&mut rhs);
@@ -408,6 +440,14 @@ impl DirectSprings {
             if fixed {
                 ok &= r.iter().zip(w).all(|(r, &w)| w <= zero || r.is_finite());
             }
+            if let (Some(shortest), true) = (shortest, iteration > 0) {
+                // What a free particle still owes: its imbalance over its mass.
+                let measured = model.solved(ok, r, P::Scalar::ONE, shortest);
+                solved_as = Some(measured);
+                if measured.converged || iteration == u16::from(cap) {
+                    break;
+                }
+            }
             // The change of each free particle (a held one's is 0), in the rows' order.
             let factor = &memory.factor;
             let change = factor.solve(r, Sh::flat_mut(&mut solved));
@@ -419,6 +459,9 @@ impl DirectSprings {
                     *v += dx * inv_h;
                 }
             }
+            if iteration + 1 == passes {
+                break;
+            }
             if let Some(gap) = &mut gap {
                 let g = Sh::flat_mut(gap);
                 for (&p, &dx) in factor.particles().iter().zip(change) {
@@ -429,7 +472,7 @@ impl DirectSprings {
                 }
             }
         }
-        ok
+        solved_as.unwrap_or(Solved::plain(ok))
     }
 }
 

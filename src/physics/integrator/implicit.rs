@@ -1,6 +1,6 @@
 //! Backward Euler, linearised once per substep and solved by conjugate gradient.
 
-use super::{Integrator, Model, State, sealed, tiny_length};
+use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
@@ -9,6 +9,13 @@ use crate::{Point, Scalar};
 /// Backward Euler linearised once per substep (Baraff–Witkin) and solved by conjugate
 /// gradient with at most `iterations` steps. Stable at any step; damps what it cannot
 /// resolve. Cost per CG iteration: one spring Jacobian product (a square root per spring).
+///
+/// Each solve reports how far its conjugate gradient ended from the linearised equations
+/// ([`StepInfo::residual`](crate::system::StepInfo::residual): a velocity's error is at most
+/// its residual over its mass, times `h` a distance; converged within 0.1% of the shortest
+/// spring): a 1 m, 1 kg rope of 30 particles released level converges every frame at
+/// 100 N/m with 16 iterations; at `10⁴ N/m` in no frame with one iteration and in 1 of 300
+/// with 16 (`tests/suite/converge.rs`). The measure is a pass over the particles.
 ///
 /// Its one linearization does not follow a very stiff spring as it turns: a 1 m, 1 kg rope
 /// of 8 particles released level at 60 Hz never rises above its starting energy up to
@@ -128,6 +135,18 @@ impl Integrator for ImplicitEuler {
         h: P::Scalar,
         forces: &mut F,
     ) -> bool {
+        self.substep_solved(model, state, h, forces).fits
+    }
+
+    /// One linearised backward Euler solve of `h` (`iterations` conjugate gradient steps),
+    /// and how far it ended from its equations.
+    fn substep_solved<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> Solved<P::Scalar> {
         let zero = P::default();
         let w = model.inv_mass();
         let x0 = Sh::flat(&state.pos);
@@ -214,12 +233,15 @@ impl Integrator for ImplicitEuler {
             }
             rs = rs_new;
         }
+        // A velocity's error is at most the residual over the mass (the matrix is at least
+        // the masses'); times `h`, a distance.
+        let solved = model.solved(ok, Sh::flat(&r), h * scale, model.shortest_rest());
         let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
         for ((x, v), &d) in x.iter_mut().zip(v.iter_mut()).zip(Sh::flat(&dv)) {
             *v += d * scale;
             *x += *v * h;
         }
-        ok
+        solved
     }
 }
 

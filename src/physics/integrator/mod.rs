@@ -17,9 +17,15 @@
 //! | [`Verlet`] | 2 | 2 | bounded | velocity Verlet, second order |
 //! | [`Rk4`] | 2√2 ≈ 2.83 | 4 | slowly loses | fourth order, the accurate choice |
 //! | [`ImplicitEuler`] | unconditionally stable | 1 + `iterations` Jacobian products | loses (damps high frequencies) | matrix-free conjugate gradient, no heap |
-//! | [`Xpbd`] | unconditionally stable | 1 per XPBD substep + one projection per spring | loses a little | springs as compliant distance constraints (Macklin et al. 2016, 2019) |
+//! | [`Xpbd`] | unconditionally stable | 1 per XPBD substep + one projection per spring, and a pass over the springs to measure | loses a little | springs as compliant distance constraints (Macklin et al. 2016, 2019) |
 //! | [`DirectChain`] | unconditionally stable, one substep a frame | 1 + `iterations` direct solves along the chain | loses where links stretch | a rope's links solved together, exactly: inextensible, or its springs at any stiffness |
-//! | [`DirectSprings`] | unconditionally stable, one substep a frame | 1 + `iterations` banded back-substitutions, one factorisation | loses (damps as backward Euler) | every spring of a rope or cloth solved together (projective dynamics): a sail at one solve a frame |
+//! | [`DirectSprings`] | unconditionally stable, one substep a frame | 1 + up to `iterations` banded back-substitutions and measures, one factorisation | loses (damps as backward Euler) | every spring of a rope or cloth solved together (projective dynamics): a sail at one solve a frame |
+//!
+//! The methods that iterate ([`ImplicitEuler`], [`Xpbd`], [`DirectChain`],
+//! [`DirectSprings`]) say how far each step ended from their equations
+//! ([`StepInfo::converged`](crate::system::StepInfo::converged) and
+//! [`residual`](crate::system::StepInfo::residual), against [`TOLERANCE`]); a step is kept
+//! either way.
 //!
 //! Per spring, a force evaluation costs one square root, one division and about 20
 //! multiply-adds; per particle, about 6 operations.
@@ -51,6 +57,12 @@ use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
 use crate::{Point, Scalar};
+
+/// Where an iterating solve stops, as a fraction: a link within 0.1% of its length
+/// ([`DirectChain`]), or a solve whose particles owe less than 0.1% of the shortest
+/// spring's rest length to its equations ([`DirectSprings`], [`ImplicitEuler`], [`Xpbd`]:
+/// [`StepInfo::residual`](crate::system::StepInfo::residual)).
+pub const TOLERANCE: (u32, u32) = (1, 1000);
 
 mod sealed {
     pub trait Sealed {}
@@ -111,9 +123,21 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> Solved<P::Scalar> {
         let _ = memory;
-        let fits = self.substep(model, state, h, forces);
+        let solved = self.substep_solved(model, state, h, forces);
         touch(state, (h, lag));
-        Solved::plain(fits)
+        solved
+    }
+
+    /// [`substep`](Self::substep), reporting how far an iterating solve ended from its
+    /// equations ([`Solved`]); a method that does not iterate reports it converged.
+    fn substep_solved<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> Solved<P::Scalar> {
+        Solved::plain(self.substep(model, state, h, forces))
     }
 
     /// `true` when the method holds each link of a chain (the spring from particle `i` to
@@ -139,6 +163,10 @@ pub struct Solved<S> {
     /// `|length − rest| / rest` of a link at the substep's end, after its contacts; 0
     /// otherwise.
     pub stretch: S,
+    /// How far an iterating solve ended from its equations, as a fraction of a length
+    /// (see [`StepInfo::residual`](crate::system::StepInfo::residual)); 0 for methods
+    /// that do not iterate.
+    pub residual: S,
 }
 
 impl<S: Scalar> Solved<S> {
@@ -148,17 +176,19 @@ impl<S: Scalar> Solved<S> {
             fits,
             converged: true,
             stretch: S::ZERO,
+            residual: S::ZERO,
         }
     }
 
     /// This substep and then `later`: each flag holds only if it held in both; the stretch
-    /// is `later`'s, the one at the end.
+    /// is `later`'s, the one at the end; the residual the larger.
     #[must_use]
     pub fn then(self, later: Solved<S>) -> Solved<S> {
         Solved {
             fits: self.fits & later.fits,
             converged: self.converged & later.converged,
             stretch: later.stretch,
+            residual: self.residual.max(later.residual),
         }
     }
 }

@@ -68,6 +68,57 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>> Model<'_, P, Sh, T> {
         Sh::flat(self.inv_mass)
     }
 
+    /// The shortest rest length of a spring with a free end (longer than
+    /// [`tiny_length`]), `None` without one: what an iterating solve measures its
+    /// [`residual`](super::Solved::residual) against. A pass over the springs' runs.
+    pub(crate) fn shortest_rest(&self) -> Option<P::Scalar> {
+        let w = self.inv_mass();
+        let mut shortest: Option<P::Scalar> = None;
+        self.topology.for_each_run(|a, b, count, rest, m| {
+            let (ends_a, ends_b) = (w.get(a..a + count), w.get(b..b + count));
+            let free = |ends: Option<&[P::Scalar]>| {
+                ends.is_some_and(|w| w.iter().any(|&w| w > P::Scalar::ZERO))
+            };
+            if m.stiffness > P::Scalar::ZERO
+                && rest > tiny_length::<P::Scalar>()
+                && (free(ends_a) || free(ends_b))
+            {
+                shortest = Some(shortest.map_or(rest, |s| s.min(rest)));
+            }
+        });
+        shortest
+    }
+
+    /// An iterating solve's [`Solved`](super::Solved) from what its free particles still
+    /// owe to its equations, the largest coordinate of `owed[i] · scale · w[i]` (`owed` a
+    /// force imbalance, `scale` what turns it into a distance), over `shortest`
+    /// ([`shortest_rest`](Self::shortest_rest)): converged within
+    /// [`TOLERANCE`](super::TOLERANCE).
+    pub(crate) fn solved(
+        &self,
+        fits: bool,
+        owed: &[P],
+        scale: P::Scalar,
+        shortest: Option<P::Scalar>,
+    ) -> super::Solved<P::Scalar> {
+        let mut largest = P::Scalar::ZERO;
+        for (r, &w) in owed.iter().zip(self.inv_mass()) {
+            if w > P::Scalar::ZERO {
+                for axis in 0..P::DIM {
+                    largest = largest.max(r.coord(axis).abs() * w);
+                }
+            }
+        }
+        let largest = largest * scale;
+        let (n, d) = super::TOLERANCE;
+        super::Solved {
+            fits,
+            converged: shortest.is_none_or(|s| largest <= s * P::Scalar::ratio(n, d)),
+            stretch: P::Scalar::ZERO,
+            residual: shortest.map_or(P::Scalar::ZERO, |s| largest / s),
+        }
+    }
+
     /// The energy of the motion at `(x, v)`: each free particle's kinetic and gravitational
     /// (relative to the origin) energy, and every spring's `½ k (l − rest)²` but the links'
     /// (from particle `i` to `i + 1`) when `held_links` (constraints store none). A held

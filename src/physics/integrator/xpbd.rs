@@ -1,6 +1,6 @@
 //! Extended position-based dynamics.
 
-use super::{Integrator, Model, State, sealed, tiny_length};
+use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
@@ -19,6 +19,13 @@ use crate::{Point, Scalar};
 /// | substeps | 4 | 16 | 64 | force-based methods | continuum `m·g/(2·EA)` |
 /// |---|---|---|---|---|---|
 /// | stretch | 7.2% | 0.92% | 0.52% | 0.49% | 0.49% |
+///
+/// A step says how far its last XPBD substep ended from backward Euler's equations, which
+/// XPBD converges to ([`StepInfo::residual`](crate::system::StepInfo::residual): the
+/// largest distance a particle still owes them, over the shortest rest length; converged
+/// within 0.1%), at the cost of a pass over the springs: a 1 m, 1 kg rope of 30 particles
+/// of `10⁴ N/m` released level converges in every frame with 64 substeps, in at most 3 of
+/// 300 with the default 4 (`tests/suite/converge.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Xpbd {
     /// XPBD substeps per step (4 to 20 is typical); 0 counts as 1.
@@ -52,11 +59,26 @@ impl Integrator for Xpbd {
         h: P::Scalar,
         forces: &mut F,
     ) -> bool {
+        self.substep_solved(model, state, h, forces).fits
+    }
+
+    /// `substeps` XPBD substeps of `h`; the last one's residual: what each free particle
+    /// still owes to backward Euler's equations, `x − y − hs² F(x, v) / m` (`y` where its
+    /// velocity and the forces other than the springs carry it), as a distance. A pass over
+    /// the springs more (a square root each).
+    fn substep_solved<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        h: P::Scalar,
+        forces: &mut F,
+    ) -> Solved<P::Scalar> {
         let n = self.substeps.max(1);
         let hs = h / P::Scalar::from_i16(n as i16);
         let inv_hs = P::Scalar::ONE / hs;
         let w = model.inv_mass();
         let mut ok = true;
+        let mut predicted = state.pos;
         for _ in 0..n {
             let (a, fine) = model.accelerations_at(state, forces, false);
             ok &= fine;
@@ -68,6 +90,7 @@ impl Integrator for Xpbd {
                     *x += *v * hs;
                 }
             }
+            predicted = state.pos;
             let x = Sh::flat_mut(&mut state.pos);
             let px = Sh::flat(&prev);
             model.topology.for_each_spring(|ia, ib, rest, m| {
@@ -93,7 +116,29 @@ impl Integrator for Xpbd {
                 *v = (x - p) * inv_hs;
             }
         }
-        ok
+        // The last substep's imbalance `M (x − y) − hs² F`, its springs' forces at the end.
+        let (x, v) = (Sh::flat(&state.pos), Sh::flat(&state.vel));
+        let mut owed = Sh::filled(P::default());
+        let r = Sh::flat_mut(&mut owed);
+        for ((r, (&x, &y)), &w) in r.iter_mut().zip(x.iter().zip(Sh::flat(&predicted))).zip(w) {
+            if w > P::Scalar::ZERO {
+                *r = (x - y) * (P::Scalar::ONE / w);
+            }
+        }
+        let h2 = hs * hs;
+        model.topology.for_each_spring(|a, b, rest, m| {
+            let d = x[b] - x[a];
+            let l = d.length();
+            if l <= tiny_length::<P::Scalar>() {
+                return;
+            }
+            let nrm = d * (P::Scalar::ONE / l);
+            let closing = (v[b] - v[a]).dot(nrm);
+            let pull = nrm * ((m.stiffness * (l - rest) + m.damping * closing) * h2);
+            r[a] -= pull;
+            r[b] += pull;
+        });
+        model.solved(ok, r, P::Scalar::ONE, model.shortest_rest())
     }
 }
 
