@@ -46,6 +46,9 @@ pub struct Report {
     /// The closest two parts of a rope's drawn curve that are not neighbours, over the run,
     /// in thousandths of its diameter, where the example measures it.
     pub closest_permille: Option<u32>,
+    /// The deepest a drawn point went inside a collider over the run, in thousandths of
+    /// the rope's thickness, where the example measures it.
+    pub inside_permille: Option<u32>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -252,6 +255,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         stretch_permille: None,
         area_permille: None,
         closest_permille: None,
+        inside_permille: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -516,6 +520,9 @@ mod board {
                 if let Some(n) = r.closest_permille {
                     put_number(b"closest_permille", n, false);
                 }
+                if let Some(n) = r.inside_permille {
+                    put_number(b"inside_permille", n, false);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -597,6 +604,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.closest_permille {
                 println!("closest_permille={n}");
+            }
+            if let Some(n) = r.inside_permille {
+                println!("inside_permille={n}");
             }
         }
         Err(e) => {
