@@ -266,6 +266,7 @@ pub use number::scalar::Scalar;
 pub use objects::cloth::Cloth;
 pub use objects::rope::Rope;
 pub use objects::torus::Torus;
+pub use physics::hash::StateHash;
 pub use physics::integrator::Integrator;
 pub use physics::settings::{Accuracy, Settings};
 pub use physics::spring::Material;

@@ -49,6 +49,9 @@ pub struct Report {
     /// The deepest a drawn point went inside a collider over the run, in thousandths of
     /// the rope's thickness, where the example measures it.
     pub inside_permille: Option<u32>,
+    /// The scripted scene's folded state checksums (`common/golden.rs`), where the example
+    /// runs it.
+    pub golden: Option<u64>,
     /// The mean of the frames' instruction counts (step and drawing).
     pub mean_frame_instructions: u32,
     pub frame: [u8; W * H],
@@ -256,6 +259,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         area_permille: None,
         closest_permille: None,
         inside_permille: None,
+        golden: None,
         mean_frame_instructions: costs.mean,
         frame,
     }
@@ -432,6 +436,23 @@ mod board {
         put(b"\n");
     }
 
+    /// `key=value` in hex, 16 digits.
+    fn put_hex64(key: &[u8], value: u64) {
+        let mut digits = [0u8; 16];
+        for (i, d) in digits.iter_mut().enumerate() {
+            let nibble = ((value >> (60 - 4 * i)) & 0xf) as u8;
+            *d = if nibble < 10 {
+                b'0' + nibble
+            } else {
+                b'a' + nibble - 10
+            };
+        }
+        put(key);
+        put(b"=");
+        put(&digits);
+        put(b"\n");
+    }
+
     fn fail(what: &[u8]) -> ! {
         put(b"error=");
         put(what);
@@ -523,6 +544,9 @@ mod board {
                 if let Some(n) = r.inside_permille {
                     put_number(b"inside_permille", n, false);
                 }
+                if let Some(n) = r.golden {
+                    put_hex64(b"golden", n);
+                }
                 put_number(b"step_instructions", r.step_instructions, false);
                 put_number(b"sample_instructions", r.sample_instructions, false);
                 put_number(
@@ -607,6 +631,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.inside_permille {
                 println!("inside_permille={n}");
+            }
+            if let Some(n) = r.golden {
+                println!("golden={n:016x}");
             }
         }
         Err(e) => {

@@ -5,6 +5,7 @@
 pub mod body;
 pub mod force;
 pub(crate) mod grid_springs;
+pub mod hash;
 pub mod integrator;
 pub(crate) mod pressure;
 pub(crate) mod settings;

@@ -7,6 +7,7 @@ use crate::error::{
 };
 use crate::physics::body::Body;
 use crate::physics::force::ForceField;
+use crate::physics::hash::StateHash;
 use crate::physics::integrator::{Integrator, Model, Solved, State, SymplecticEuler};
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Spread, Topology, check_rest};
@@ -463,6 +464,76 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         }
         self.update_spring_rate();
         Ok(())
+    }
+
+    /// A checksum of everything that shapes the steps to come, for rollback netplay: the
+    /// clock, every particle's position, velocity and inverse mass, every live spring's
+    /// ends, rest length and material (a snapped or cut spring is gone from it), gravity,
+    /// the drag, the integrator's memory ([`Integrator::hash_memory`]) and whether the
+    /// last step left a held chain settled. Not the settings' other fields, nor snap
+    /// limits: a game sets those alike on every peer. See [`StateHash`] for the checksum.
+    ///
+    /// **Snapshots.** The system is `Clone` and holds no pointer and no heap: a clone is
+    /// a snapshot, and assigning it back rolls the simulation back exactly (the test
+    /// `rollback::a_replay_after_a_rollback_hashes_as_the_first_run`, in the style of
+    /// GGRS's sync test). Its size is `size_of` the object: a `Rope<Vec2<f32>, 8>` takes
+    /// 348 bytes (`Q16` the same), a `Rope<Vec3<f32>, 16>` 768, a `Cloth<Vec3<f32>, 8, 8>`
+    /// 1 964 and with `DirectSprings` (its factor) 6 992 (`rollback::snapshots_are_*`).
+    ///
+    /// **Determinism.** The same state, inputs and calls give the same bits, so the same
+    /// checksum: in `Q16` on every platform (integer arithmetic only); in CI the host, a
+    /// `.wasm` under node and the Cortex-M0 (`Q16`) and M4F (`f32`) reproduce the
+    /// scripted scene's golden checksums (`tests/golden.txt`); in `f32` and `f64` on every
+    /// platform that rounds IEEE 754 operations alike, with the same build: ropes and cloth
+    /// step with `+ − × ÷` and square roots, which IEEE 754 rounds exactly, so the `std`
+    /// feature's math (the default on a hosted target) and `libm`'s (on a microcontroller)
+    /// agree on them. What breaks it: functions past the square root taken from `std` on
+    /// different platforms (`sin`, `atan2`, `exp` may differ in their last bit), the
+    /// `micromath` feature (approximations), fused multiply-adds (`-C
+    /// target-feature=+fma`, or a target whose compiler contracts `a·b + c`), a different
+    /// feature set or crate version between peers, and calls in a different order.
+    /// Cost: a 64-bit multiply a 32-bit word, `2·(2·DIM + 1)` words a particle and 8 a
+    /// spring.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// let settings = Settings { gravity: Vec2::new(0.0f32, -9.81), ..Settings::default() };
+    /// let material = Material { stiffness: 400.0, damping: 0.5 };
+    /// let mut rope: Rope<Vec2<f32>, 8> =
+    ///     Rope::new(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), 1.0, material, settings)?;
+    /// let saved = rope.clone();
+    /// let first: Vec<u64> = (0..8).map(|_| { rope.step(1.0 / 60.0).unwrap(); rope.state_hash() }).collect();
+    /// rope = saved; // roll back
+    /// let replay: Vec<u64> = (0..8).map(|_| { rope.step(1.0 / 60.0).unwrap(); rope.state_hash() }).collect();
+    /// assert_eq!(first, replay);
+    /// # Ok::<(), dunas::Error>(())
+    /// ```
+    pub fn state_hash(&self) -> u64 {
+        let mut hash = StateHash::new();
+        hash.add_scalar(self.time);
+        let particles = Sh::flat(&self.state.pos)
+            .iter()
+            .zip(Sh::flat(&self.state.vel));
+        for ((&x, &v), &w) in particles.zip(Sh::flat(&self.inv_mass)) {
+            hash.add_point(x);
+            hash.add_point(v);
+            hash.add_scalar(w);
+        }
+        let mut live = 0u32;
+        self.topology.for_each_spring(|a, b, rest, m| {
+            hash.add_u32(a as u32);
+            hash.add_u32(b as u32);
+            for value in [rest, m.stiffness, m.damping] {
+                hash.add_scalar(value);
+            }
+            live = live.wrapping_add(1);
+        });
+        hash.add_u32(live);
+        hash.add_point(self.settings.gravity);
+        hash.add_scalar(self.settings.damping);
+        I::hash_memory(&self.memory, &mut hash);
+        hash.add_u64(self.settled.map_or(0, |key| (1 << 32) | u64::from(key)));
+        hash.finish()
     }
 
     /// Total energy: kinetic + spring + gravitational (relative to the origin), for tests and

@@ -8,6 +8,8 @@ mod common;
 
 #[path = "../../examples/common/catapult.rs"]
 mod catapult;
+#[path = "../../examples/common/golden.rs"]
+mod golden;
 #[path = "../../examples/common/raster.rs"]
 mod raster;
 #[path = "../../examples/common/rope_scene.rs"]
@@ -27,6 +29,7 @@ mod pressure;
 mod promises;
 mod properties;
 mod regressions;
+mod rollback;
 mod rope;
 mod samplers;
 mod sea;

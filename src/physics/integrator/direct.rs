@@ -4,6 +4,7 @@
 use super::banded::{Factor, Springs};
 use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
+use crate::physics::hash::StateHash;
 use crate::physics::shape::Shape;
 use crate::physics::spring::{Spread, Topology};
 use crate::{Point, Scalar};
@@ -165,6 +166,12 @@ impl Integrator for DirectSprings {
 
     fn force_evaluations(&self) -> u32 {
         u32::from(self.substeps.max(1))
+    }
+
+    /// The energy a solve with [`keep_energy`](Self::keep_energy) owes to the next (the
+    /// factor is made again from the state and the step).
+    fn hash_memory<S: Scalar, Sh: Shape>(memory: &Factored<S, Sh>, hash: &mut StateHash) {
+        hash.add_scalar(memory.owed);
     }
 
     fn substep<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(

@@ -54,6 +54,7 @@ pub use verlet::Verlet;
 pub use xpbd::Xpbd;
 
 use crate::physics::force::ForceField;
+use crate::physics::hash::StateHash;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
 use crate::{Point, Scalar};
@@ -138,6 +139,13 @@ pub trait Integrator: sealed::Sealed + Copy + Debug + Default + PartialEq {
         forces: &mut F,
     ) -> Solved<P::Scalar> {
         Solved::plain(self.substep(model, state, h, forces))
+    }
+
+    /// Adds to `hash` what of `memory` shapes the steps to come (for
+    /// [`MassSpring::state_hash`](crate::MassSpring::state_hash)): nothing for the methods
+    /// that keep nothing, or keep only what the state and the step make again (a factor).
+    fn hash_memory<S: Scalar, Sh: Shape>(memory: &Self::Memory<S, Sh>, hash: &mut StateHash) {
+        let _ = (memory, hash);
     }
 
     /// `true` when the method holds each link of a chain (the spring from particle `i` to
@@ -349,5 +357,9 @@ impl Integrator for AnyIntegrator {
 
     fn holds_links(&self) -> bool {
         with_method!(*self, m => m.holds_links())
+    }
+
+    fn hash_memory<S: Scalar, Sh: Shape>(memory: &Self::Memory<S, Sh>, hash: &mut StateHash) {
+        DirectSprings::hash_memory(memory, hash);
     }
 }
