@@ -5,6 +5,7 @@
 
 pub mod breaking;
 pub(crate) mod cloth;
+mod reel;
 pub(crate) mod rope;
 pub mod spline_rope;
 pub(crate) mod torus;

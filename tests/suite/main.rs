@@ -28,6 +28,7 @@ mod ppm;
 mod pressure;
 mod promises;
 mod properties;
+mod reel;
 mod regressions;
 mod rollback;
 mod rope;
