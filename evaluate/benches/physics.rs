@@ -38,8 +38,9 @@ const INTEGRATORS: [(&str, AnyIntegrator); 8] = [
         "direct_springs",
         AnyIntegrator::DirectSprings(DirectSprings {
             iterations: 1,
+            substeps: 1,
             measure: false,
-            ..DirectSprings::default()
+            keep_energy: false,
         }),
     ),
 ];
