@@ -27,7 +27,7 @@ use core::cell::Cell;
 /// `dt`: use [`FixedTimestep`](crate::FixedTimestep) to keep it). The matrix's rows are
 /// the free particles only, in the order of a breadth-first walk over the springs,
 /// reversed, which keeps their envelopes short (the particles' own order where the walk
-/// would put a spring beyond the band). Each of `iterations`
+/// would put a spring beyond the band). Each iteration (up to `iterations`)
 /// points every spring at its rest length from the positions so far (the first from where
 /// the velocities alone would carry the particles, so a loaded cloth at rest stays in its
 /// balance) and solves for the change of the positions (a forward and a back substitution).
