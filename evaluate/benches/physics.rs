@@ -252,6 +252,30 @@ fn breaking(c: &mut Criterion) {
     g.finish();
 }
 
+/// A frame that reels the rope in (`Rope::reel`, then the step) against a plain frame, with
+/// symplectic Euler and with `DirectChain`.
+fn reel(c: &mut Criterion) {
+    let mut g = c.benchmark_group("reel");
+    for (name, method) in [
+        ("symplectic_euler", AnyIntegrator::SymplecticEuler),
+        (
+            "direct_chain",
+            AnyIntegrator::DirectChain(DirectChain::default()),
+        ),
+    ] {
+        let rope = rope::<8, 7>(method);
+        let target = 0.5 * rope.length();
+        bench_on(&mut g, &format!("rope8_{name}_step"), &rope, |r| {
+            r.step(1.0 / 60.0).unwrap()
+        });
+        bench_on(&mut g, &format!("rope8_{name}_reel_step"), &rope, |r| {
+            r.reel(target, 1.0, 1.0 / 60.0).unwrap();
+            r.step(1.0 / 60.0).unwrap()
+        });
+    }
+    g.finish();
+}
+
 fn sizes(_: &mut Criterion) {
     use core::mem::size_of;
     println!(
@@ -330,6 +354,6 @@ criterion_group! {
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_millis(800))
         .sample_size(30);
-    targets = sizes, steps, frames, contacts, surfaces, breaking, spline_rope
+    targets = sizes, steps, frames, contacts, surfaces, breaking, reel, spline_rope
 }
 criterion_main!(benches);
