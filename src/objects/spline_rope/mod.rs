@@ -118,6 +118,7 @@ use crate::contact::{Contacts, DrawnSpans};
 use crate::curves::sampler::bernstein_weights;
 use crate::curves::sampler::{DefaultSampler, Sampler};
 use crate::physics::force::{Accelerations, Bodies, ForceField};
+use crate::physics::hash::StateHash;
 use crate::physics::integrator::{ImplicitEuler, SymplecticEuler, solve_scale};
 use crate::physics::substeps::{plan, substeps_per_rate};
 use crate::physics::system::StepInfo;
@@ -518,6 +519,40 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// Simulated time since creation (seconds).
     pub fn time(&self) -> P::Scalar {
         self.time
+    }
+
+    /// A checksum of everything that shapes the steps to come, for rollback netplay (as
+    /// [`MassSpring::state_hash`](crate::MassSpring::state_hash), which states what keeps
+    /// it equal across platforms): the clock, every control point's position, velocity,
+    /// pin and mass, the stretch's and bending's stiffness and damping, gravity, the drag,
+    /// the forces applied for the next step, and the last implicit step that
+    /// [`Bdf2`] starts from. A snapshot is a clone.
+    pub fn state_hash(&self) -> u64 {
+        let mut hash = StateHash::new();
+        hash.add_scalar(self.time);
+        for i in 0..K {
+            hash.add_point(self.pos[i]);
+            hash.add_point(self.vel[i]);
+            hash.add_u32(u32::from(self.pinned[i]));
+            hash.add_scalar(self.inv_load[i]);
+            hash.add_point(self.extra[i]);
+        }
+        for value in [self.stretch.stiffness, self.stretch.damping, self.bending] {
+            hash.add_scalar(value);
+        }
+        hash.add_point(self.settings.gravity);
+        hash.add_scalar(self.settings.damping);
+        match &self.history {
+            Some(last) => {
+                hash.add_u32(1);
+                last.start.iter().for_each(|&p| hash.add_point(p));
+                last.velocities.iter().for_each(|&v| hash.add_point(v));
+                hash.add_scalar(last.h);
+                hash.add_scalar(last.headroom);
+            }
+            None => hash.add_u32(0),
+        }
+        hash.finish()
     }
 
     /// The highest angular frequency of the stretch and bending against the mass (rad/s, by
