@@ -57,9 +57,10 @@ use core::cell::Cell;
 /// - a bob 100 times the rope's mass, swinging or whirled: within 0.5% (0.001% on the links,
 ///   0.11% on the drawn curve);
 /// - a bob 1 000 times the rope's mass, released level: links within 0.1%, the step
-///   flagged unconverged in 7 frames of 240. Its light links can fold under it (4 solves
-///   of 4 iterations: it passes under its pin 7.5% late, at 0.637 s where a pendulum takes
-///   0.592; 1.3% late at one solve, 0.3% at 4 solves of 16 iterations); a 70 kg player on a 2 kg, 12-particle rope
+///   flagged unconverged in 7 frames of 240. Its light links can fold under it: it passes
+///   under its pin 7.5% late (0.637 s where the closed form's pendulum takes 0.592), 0.3%
+///   with 16 iterations a solve (`converge::direct_chain_swings_a_heavy_bob_as_a_pendulum`
+///   holds 8% and 0.5%); a 70 kg player on a 2 kg, 12-particle rope
 ///   at one solve of two iterations a frame: within 0.1%, no frame flagged;
 /// - one step of 1 s under that player: within 0.1%; one of 10 s: refused;
 /// - an undamped released rope keeps 17% of its swing's energy over 10 s without a bob and

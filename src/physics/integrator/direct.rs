@@ -54,9 +54,9 @@ use core::cell::Cell;
 ///   should in its first half second with one iteration, 86% with four; 10 times stiffer,
 ///   8% and 26%. A measured solve says so ([`measure`](Self::measure)): a 1 m, 1 kg, 8×8
 ///   cloth held level by two corners under a drag of 2/s, at the defaults, hangs 0.93 m
-///   below them after 10 s with axial stiffness `EA = 10³ N` and 0.90 m at `10⁴` (statics
-///   and symplectic Euler: 1.00 m), every frame reported unconverged; 64 iterations bring
-///   `10³` to 1.00 m. What it cannot turn in `iterations`, no setting here turns at one
+///   below them after 10 s with axial stiffness `EA = 10³ N` and 0.90 m at `10⁴` (statics:
+///   1.00 m; `docs/summary.md`, targets), every frame reported unconverged
+///   (`tests/suite/converge.rs`). What it cannot turn in `iterations`, no setting here turns at one
 ///   solve's cost: for cloth that swings free and stiff, use symplectic Euler's substeps;
 ///   for a rope under a heavy bob, [`DirectChain`](super::DirectChain) (a 10 kg bob on a
 ///   1 kg rope of 10⁵ N/m stretches it 2.0% here).
