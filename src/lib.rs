@@ -251,7 +251,7 @@ pub use io::graphics;
 pub use io::xml;
 pub use number::scalar;
 pub use objects::{breaking, spline_rope, water};
-pub use physics::{body, force, integrator, shape, spring, system, timestep};
+pub use physics::{body, force, integrator, shape, sleep, spring, system, timestep};
 
 pub use curves::curve::{Bezier, Cubic, Quadratic};
 pub use curves::patch::{Bicubic, Patch};
@@ -269,6 +269,7 @@ pub use objects::torus::Torus;
 pub use physics::hash::StateHash;
 pub use physics::integrator::Integrator;
 pub use physics::settings::{Accuracy, Settings};
+pub use physics::sleep::Sleep;
 pub use physics::spring::Material;
 pub use physics::system::MassSpring;
 pub use physics::timestep::FixedTimestep;

@@ -26,6 +26,6 @@ pub use crate::geometry::point::Point as _;
 pub use crate::geometry::point::{Vec2, Vec3};
 pub use crate::physics::integrator::Integrator;
 pub use crate::{
-    Accuracy, Bezier, Cloth, Error, FixedTimestep, Material, Rope, Scalar, Settings, Smoothing,
-    View,
+    Accuracy, Bezier, Cloth, Error, FixedTimestep, Material, Rope, Scalar, Settings, Sleep,
+    Smoothing, View,
 };

@@ -17,6 +17,7 @@ mod report;
 mod ropes;
 mod sails;
 mod samplers;
+mod sleep;
 mod stability;
 mod stiff;
 
@@ -92,7 +93,7 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 10] = [
+    let sections: [(&str, Section); 11] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
@@ -103,6 +104,7 @@ fn main() {
         ("modes", modes::run),
         ("stiff ropes", stiff::run),
         ("chains", chains::run),
+        ("sleep", sleep::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

@@ -2,6 +2,9 @@
 //! (`web/`): a gaff-rigged sail filled by gusty wind, the hull and spars it is drawn on, the
 //! fleet's layout and the camera that sees it. Metres and seconds; y up, the wind along +z.
 #![allow(dead_code)]
+// `.ok().expect(..)` rather than `.expect(..)`: the message is the same, and `Error`'s
+// `Debug` (with the float formatting it brings, 40 KB) stays out of the browser's .wasm.
+#![allow(clippy::ok_expect)]
 
 use dunas::force::{SailWind, Wind};
 use dunas::integrator::{DirectSprings, Integrator};
@@ -42,17 +45,18 @@ pub fn sail<I: Integrator, const U: usize, const V: usize>(
         materials,
         settings,
     )
+    .ok()
     .expect("valid sail");
-    cloth.pin_column(0).expect("column in range");
-    cloth.pin_row(0).expect("row in range");
-    cloth.pin_row(V - 1).expect("row in range");
+    cloth.pin_column(0).ok().expect("column in range");
+    cloth.pin_row(0).ok().expect("row in range");
+    cloth.pin_row(V - 1).ok().expect("row in range");
     let mut air = Wind::still(0.02);
     air.velocity = Vec3::new(0.0, 0.0, wind_speed);
     air.gust = Vec3::new(0.0, 0.0, 0.8 * wind_speed);
     air.gust_start = phase;
     air.gust_length = 1.5;
     air.gust_every = 3.0;
-    (cloth, SailWind::new(air, 0.7).expect("valid wind"))
+    (cloth, SailWind::new(air, 0.7).ok().expect("valid wind"))
 }
 
 pub fn arr(p: Vec3<f32>) -> [f32; 3] {

@@ -3,6 +3,9 @@
 //! the penguin flies a ballistic arc to the snow; a swipe across the drawn rope cuts it.
 //! Metres, seconds, kilograms; y up.
 #![allow(dead_code)]
+// `.ok().expect(..)` rather than `.expect(..)`: the message is the same, and `Error`'s
+// `Debug` (with the float formatting it brings, 40 KB) stays out of the browser's .wasm.
+#![allow(clippy::ok_expect)]
 
 use dunas::ascii::{Canvas, View};
 use dunas::body::Body;
@@ -101,8 +104,9 @@ impl Catapult {
             material,
             settings,
         )
+        .ok()
         .expect("a valid rope");
-        rope.hang(7, PENGUIN).expect("the end is free");
+        rope.hang(7, PENGUIN).ok().expect("the end is free");
         Catapult {
             rope,
             penguin: Penguin::Swinging,
@@ -114,6 +118,7 @@ impl Catapult {
             snow: [
                 Collider::half_space(Vec2::new(0.0, GROUND), Vec2::new(0.0, 1.0))
                     .and_then(|c| c.with_friction(0.5, 0.4))
+                    .ok()
                     .expect("a valid floor"),
             ],
             slow_frames: 0,
@@ -139,16 +144,20 @@ impl Catapult {
         self.time += STEP;
         self.rope
             .move_pinned(0, Self::hand(self.time), STEP)
+            .ok()
             .expect("the hand stays in range");
         // The whirled rope cannot reach the snow; a cut piece falls on it (the contacts' extra
         // substeps are paid only then). The snow is wide: its particles touch it, and the
         // browser page links no curve contacts.
         let info = if self.pieces() > 1 {
-            let snow = Contacts::new(&self.snow, THICKNESS, Touch::Particles).expect("valid");
+            let snow = Contacts::new(&self.snow, THICKNESS, Touch::Particles)
+                .ok()
+                .expect("valid");
             self.rope.step_touching_particles(STEP, (), &snow)
         } else {
             self.rope.step(STEP)
         }
+        .ok()
         .expect("the rope stays stable");
         self.slow_frames += u32::from(info.slow_motion);
         self.unconverged_frames += u32::from(!info.converged);
@@ -170,6 +179,7 @@ impl Catapult {
                     let body = self
                         .rope
                         .release(7, PENGUIN)
+                        .ok()
                         .expect("the penguin hangs there");
                     self.released = Some((body.position, body.velocity));
                     self.penguin = Penguin::Flying(body);
@@ -239,9 +249,10 @@ impl Catapult {
     /// its trail.
     pub fn render(&self, w: usize, h: usize) -> Vec<String> {
         let mut cells = vec![b' '; w * h];
-        let mut canvas = Canvas::new(&mut cells, w, h).expect("a valid canvas");
-        let view =
-            View::new(Vec2::new(-3.0, 2.5), 24.0 / w as f32, 6.0 / h as f32).expect("a valid view");
+        let mut canvas = Canvas::new(&mut cells, w, h).ok().expect("a valid canvas");
+        let view = View::new(Vec2::new(-3.0, 2.5), 24.0 / w as f32, 6.0 / h as f32)
+            .ok()
+            .expect("a valid view");
         let (_, snow) = view.cell(Vec2::new(0.0, GROUND));
         canvas.line((0, snow), (w as i32 - 1, snow), b'=');
         let (mut points, mut pieces) = ([Vec2::default(); DRAWN], [Piece::EMPTY; 8]);

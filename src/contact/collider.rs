@@ -22,6 +22,7 @@
 
 use crate::error::{check_non_negative, check_points, check_positive};
 use crate::error::{invalid, out_of_range};
+use crate::physics::hash::StateHash;
 use crate::{Aabb, Error, Point, Scalar, Vec2};
 
 /// Most corners of a [`Collider::polygon`].
@@ -413,6 +414,36 @@ impl<P: Point> Collider<P> {
                     .fold(P::Scalar::SAFE_RANGE, P::Scalar::min)
             }
         }
+    }
+
+    /// Adds everything that defines it to `key`: its solid, velocity, friction, restitution
+    /// and mass.
+    pub(crate) fn hash(&self, key: &mut StateHash) {
+        let mut points = |points: &[P], scalars: &[P::Scalar]| {
+            points.iter().for_each(|&p| key.add_point(p));
+            scalars.iter().for_each(|&x| key.add_scalar(x));
+        };
+        match &self.solid {
+            Solid::Ball { center, radius } => points(&[*center], &[*radius]),
+            Solid::Capsule {
+                a,
+                dir,
+                length,
+                radius,
+            } => points(&[*a, *dir], &[*length, *radius]),
+            Solid::HalfSpace { point, normal } => points(&[*point, *normal], &[]),
+            Solid::Box(b) => points(&[b.min, b.max], &[]),
+            Solid::Polygon { corners, count, .. } => points(&corners[..usize::from(*count)], &[]),
+        }
+        points(
+            &[self.velocity],
+            &[
+                self.static_friction,
+                self.kinetic_friction,
+                self.restitution,
+                self.inv_mass,
+            ],
+        );
     }
 
     /// A box holding the solid (the half-space's is the whole safe range): the broad phase.

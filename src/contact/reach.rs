@@ -4,6 +4,7 @@
 use super::{Contacts, Touch};
 use crate::collider::Collider;
 use crate::curves::smooth::Smoothing;
+use crate::physics::hash::StateHash;
 use crate::{Aabb, Point, Scalar};
 
 impl<P: Point> Contacts<'_, P> {
@@ -85,5 +86,24 @@ impl<P: Point> Contacts<'_, P> {
                 .colliders
                 .iter()
                 .any(|c| self.reachable(c, (object, reach), dt))
+    }
+
+    /// For [`Sleep`](crate::Sleep): a key of the colliders that can touch
+    /// `object` (a box of an object at rest) within `dt` seconds, and of the thickness and
+    /// touch; `None` when one of them has a velocity or a mass (it moves, or may be pushed).
+    /// A test a collider.
+    pub(crate) fn still_key(&self, object: Aabb<P>, dt: P::Scalar) -> Option<u64> {
+        let mut key = StateHash::new();
+        for c in self.colliders {
+            if self.reachable(c, (object, P::Scalar::ZERO), dt) {
+                if c.velocity() != P::default() || c.inv_mass() > P::Scalar::ZERO {
+                    return None;
+                }
+                c.hash(&mut key);
+            }
+        }
+        key.add_scalar(self.thickness);
+        key.add_u32(u32::from(self.self_friction.is_some()));
+        Some(key.finish())
     }
 }

@@ -2,6 +2,7 @@
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
 use super::{Contacts, Touch};
+use crate::error::check_non_negative;
 use crate::physics::force::ForceField;
 use crate::physics::integrator::{Integrator, State};
 use crate::physics::shape::Shape;
@@ -80,17 +81,23 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         surface: bool,
         resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let (speed, object) = (
-            (self.top_speed(dt), surface),
-            (self.drawn_bounds(contacts.touch()), dt),
-        );
         contacts.clear_pushes();
+        let bounds = self.drawn_bounds(contacts.touch());
+        let near = match self.sleep() {
+            Some(_) => contacts.still_key(bounds, dt),
+            None => None,
+        };
+        // Asleep with nothing near moved: it stays so, with no contacts to test.
+        if self.sleeps_under(&forces, near) {
+            return check_non_negative(dt, "dt").map(|dt| self.doze(dt));
+        }
+        let (speed, object) = ((self.top_speed(dt), surface), (bounds, dt));
         // Nothing within reach this frame: a plain step, with no contacts to test.
         if !contacts.can_touch(speed, object) {
             return contacts.finish_report(self.step_resolving(
                 dt,
                 forces,
-                P::Scalar::ZERO,
+                (P::Scalar::ZERO, near),
                 |_, _, _| {},
             ));
         }
@@ -102,6 +109,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             contacts.advance_bodies(times.0);
             resolve(state, w, times)
         };
-        contacts.finish_report(self.step_resolving(dt, forces, floor, resolve))
+        contacts.finish_report(self.step_resolving(dt, forces, (floor, near), resolve))
     }
 }

@@ -30,7 +30,7 @@ use crate::{Error, Point, Scalar, Settings};
 /// (measured 5e-4), are rounding noise in the stiffest spring mode, too fast and too small
 /// to see (`tests/suite/rope.rs`, `a_resting_f32_rope_stays_still`).
 ///
-/// State size in `f32` 2D: `20·N + 16·CAP + 60` bytes; 348 for 8 particles.
+/// State size in `f32` 2D: `20·N + 16·CAP + 80` bytes; 368 for 8 particles.
 ///
 /// # Where things are
 /// - Stepping, holding and weights are its [`MassSpring`]'s, reached through `Deref`:

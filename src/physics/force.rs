@@ -6,6 +6,7 @@
 //! fields are fields too: `(wind, anchor)`.
 
 use crate::error::{check_non_negative, check_points};
+use crate::physics::hash::StateHash;
 use crate::{Error, Material, Point, Scalar, Vec3};
 
 pub use super::pressure::Pressure;
@@ -100,12 +101,27 @@ impl<P: Point> Accelerations<'_, P> {
 pub trait ForceField<P: Point> {
     /// Adds this field's forces at simulation time `time` (seconds since the system started).
     fn apply(&mut self, time: P::Scalar, bodies: &Bodies<'_, P>, out: &mut Accelerations<'_, P>);
+
+    /// `true` when the force depends on nothing but the bodies (their positions, velocities
+    /// and layout) and what this adds to `key` (the field's own parameters); `false` when it
+    /// changes with time or cannot tell, the default. An object stepped under a field that
+    /// is not steady never falls asleep ([`Sleep`](crate::Sleep)); one
+    /// asleep wakes when the key changes. Cost: a few words hashed.
+    fn steady(&self, key: &mut StateHash) -> bool {
+        let _ = key;
+        false
+    }
 }
 
 /// No extra force.
 impl<P: Point> ForceField<P> for () {
     #[inline]
     fn apply(&mut self, _: P::Scalar, _: &Bodies<'_, P>, _: &mut Accelerations<'_, P>) {}
+
+    #[inline]
+    fn steady(&self, _: &mut StateHash) -> bool {
+        true
+    }
 }
 
 impl<P: Point, A: ForceField<P>, B: ForceField<P>> ForceField<P> for (A, B) {
@@ -114,12 +130,22 @@ impl<P: Point, A: ForceField<P>, B: ForceField<P>> ForceField<P> for (A, B) {
         self.0.apply(t, bodies, out);
         self.1.apply(t, bodies, out);
     }
+
+    #[inline]
+    fn steady(&self, key: &mut StateHash) -> bool {
+        self.0.steady(key) && self.1.steady(key)
+    }
 }
 
 impl<P: Point, F: ForceField<P>> ForceField<P> for &mut F {
     #[inline]
     fn apply(&mut self, t: P::Scalar, bodies: &Bodies<'_, P>, out: &mut Accelerations<'_, P>) {
         (**self).apply(t, bodies, out);
+    }
+
+    #[inline]
+    fn steady(&self, key: &mut StateHash) -> bool {
+        (**self).steady(key)
     }
 }
 
@@ -189,6 +215,13 @@ impl<P: Point> ForceField<P> for Wind<P> {
         for (i, &v) in bodies.vel.iter().enumerate() {
             out.add_force(i, (w - v) * self.drag);
         }
+    }
+
+    /// Steady without gusts (`gust_length <= 0` or no `gust`): its velocity and drag.
+    fn steady(&self, key: &mut StateHash) -> bool {
+        key.add_point(self.velocity);
+        key.add_scalar(self.drag);
+        self.gust_length <= P::Scalar::ZERO || self.gust == P::default()
     }
 }
 
@@ -277,6 +310,12 @@ impl<S: Scalar> SailWind<S> {
 }
 
 impl<S: Scalar> ForceField<Vec3<S>> for SailWind<S> {
+    /// Steady when its air is ([`Wind`]'s rule).
+    fn steady(&self, key: &mut StateHash) -> bool {
+        key.add_scalar(self.pressure);
+        self.air.steady(key)
+    }
+
     fn apply(&mut self, t: S, bodies: &Bodies<'_, Vec3<S>>, out: &mut Accelerations<'_, Vec3<S>>) {
         self.air.apply(t, bodies, out);
         let wind = self.air.at(t);
@@ -366,6 +405,16 @@ impl<P: Point> AnchorSpring<P> {
 }
 
 impl<P: Point> ForceField<P> for AnchorSpring<P> {
+    /// Always steady: its particle, anchor, rest length and material.
+    fn steady(&self, key: &mut StateHash) -> bool {
+        key.add_u64(self.particle as u64);
+        key.add_point(self.anchor);
+        for value in [self.rest, self.material.stiffness, self.material.damping] {
+            key.add_scalar(value);
+        }
+        true
+    }
+
     fn apply(&mut self, _: P::Scalar, bodies: &Bodies<'_, P>, out: &mut Accelerations<'_, P>) {
         let (Some(&x), Some(&v)) = (bodies.pos.get(self.particle), bodies.vel.get(self.particle))
         else {

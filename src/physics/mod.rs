@@ -10,6 +10,7 @@ pub mod integrator;
 pub(crate) mod pressure;
 pub(crate) mod settings;
 pub mod shape;
+pub mod sleep;
 pub mod spring;
 pub(crate) mod substeps;
 pub mod system;

@@ -2,6 +2,7 @@
 //! tube in 3D.
 
 use super::force::{Accelerations, Bodies, ForceField};
+use super::hash::StateHash;
 use crate::error::check_non_negative;
 use crate::{Error, Point, Scalar, Vec2, Vec3};
 
@@ -168,6 +169,12 @@ impl<S: Scalar> Pressure<S> {
 }
 
 impl<S: Scalar> ForceField<Vec2<S>> for Pressure<S> {
+    /// Always steady: its amount of gas.
+    fn steady(&self, key: &mut StateHash) -> bool {
+        key.add_scalar(self.amount);
+        true
+    }
+
     fn apply(&mut self, _: S, bodies: &Bodies<'_, Vec2<S>>, out: &mut Accelerations<'_, Vec2<S>>) {
         let x = bodies.pos;
         let area = Self::signed_area(x);
@@ -231,6 +238,12 @@ fn quads<S: Scalar>(
 }
 
 impl<S: Scalar> ForceField<Vec3<S>> for Pressure<S> {
+    /// Always steady: its amount of gas.
+    fn steady(&self, key: &mut StateHash) -> bool {
+        key.add_scalar(self.amount);
+        true
+    }
+
     fn apply(&mut self, _: S, bodies: &Bodies<'_, Vec3<S>>, out: &mut Accelerations<'_, Vec3<S>>) {
         let twelve = Self::signed_volume(bodies.pos, bodies.columns) * S::from_i16(12);
         if !twelve.is_finite() {

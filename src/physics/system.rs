@@ -7,9 +7,9 @@ use crate::error::{
 };
 use crate::physics::body::Body;
 use crate::physics::force::ForceField;
-use crate::physics::hash::StateHash;
 use crate::physics::integrator::{Integrator, Model, Solved, State, SymplecticEuler};
 use crate::physics::shape::Shape;
+use crate::physics::sleep::Rest;
 use crate::physics::spring::{Spread, Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
 use crate::{Error, Point, Scalar, Settings};
@@ -64,6 +64,9 @@ pub struct StepInfo<S> {
     ///   `|length − goal| / rest` of a link (its stretch when inextensible);
     /// - the explicit methods: 0.
     pub residual: S,
+    /// `true` when the object slept through the step ([`Sleep`](crate::Sleep)):
+    /// nothing moved, no substep was taken, the clock ran on by `dt`.
+    pub asleep: bool,
 }
 
 /// The largest stretch of a held link a step keeps (10%, as a fraction): a step of an
@@ -80,23 +83,27 @@ pub const MAX_STRETCH: (u32, u32) = (1, 10);
 /// A particle with inverse mass 0 is pinned: the integrators never move it, and the game moves
 /// it with [`set_position`](Self::set_position) (a rope held by a hand).
 #[derive(Clone)]
+#[repr(C)]
 pub struct MassSpring<P: Point, Sh: Shape, T, I: Integrator = SymplecticEuler> {
-    state: State<P, Sh>,
-    inv_mass: Sh::PerParticle<P::Scalar>,
-    topology: T,
-    time: P::Scalar,
+    pub(in crate::physics) state: State<P, Sh>,
+    pub(in crate::physics) inv_mass: Sh::PerParticle<P::Scalar>,
+    pub(in crate::physics) topology: T,
+    pub(in crate::physics) time: P::Scalar,
+    /// Whether it may sleep, and whether it does (next to the clock: a sleeping step
+    /// touches nothing else).
+    pub(in crate::physics) rest: Rest<P::Scalar>,
     /// `ω + γ` of the springs alone (see [`stiffness_bound`](Self::stiffness_bound)), kept
     /// current by every method that changes masses or springs; after springs break it may
     /// be higher than the springs left need, which is safe.
     spring_rate: P::Scalar,
     /// Substeps per unit of `rate · dt`, from the integrator and the accuracy.
     per_rate: P::Scalar,
-    settings: Settings<P, I>,
+    pub(in crate::physics) settings: Settings<P, I>,
     /// What the integrator keeps between steps (`DirectSprings`: its factor).
-    memory: I::Memory<P::Scalar, Sh>,
+    pub(in crate::physics) memory: I::Memory<P::Scalar, Sh>,
     /// A key of the free particles' positions at the end of the last step, if that step
     /// kept its method's tolerance ([`Model::settled`] when they are still there).
-    settled: Option<u32>,
+    pub(in crate::physics) settled: Option<u32>,
 }
 
 impl<P: Point, Sh: Shape, T: core::fmt::Debug, I: Integrator> core::fmt::Debug
@@ -183,6 +190,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             settings,
             memory: I::memory(),
             settled: None,
+            rest: Rest::default(),
         };
         system.update_spring_rate();
         Ok(system)
@@ -232,6 +240,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// bound kept is still safe (a step may take more substeps than the springs left need,
     /// until masses or springs next change).
     pub(crate) fn break_springs<R>(&mut self, f: impl FnOnce(&mut T) -> R) -> R {
+        self.rest.wake();
         f(&mut self.topology)
     }
 
@@ -256,6 +265,16 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         settings.check()?;
         check_inside(self.positions(), settings.bounds, "positions")?;
         self.per_rate = substeps_per_rate(&settings.integrator, settings.accuracy);
+        let old = &self.settings;
+        self.rest.wake_if(
+            (old.gravity, old.damping, old.bounds, old.accuracy)
+                != (
+                    settings.gravity,
+                    settings.damping,
+                    settings.bounds,
+                    settings.accuracy,
+                ),
+        );
         self.settings = settings;
         Ok(())
     }
@@ -270,7 +289,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         check_index(i, Sh::LEN)?;
         check_points(&[p], "position")?;
         check_inside(&[p], self.settings.bounds, "position")?;
-        Sh::flat_mut(&mut self.state.pos)[i] = p;
+        let x = &mut Sh::flat_mut(&mut self.state.pos)[i];
+        self.rest.wake_if(*x != p);
+        *x = p;
         Ok(())
     }
 
@@ -303,6 +324,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         check_inside(&[p], self.settings.bounds, "p")?;
         let v = (p - Sh::flat(&self.state.pos)[i]) * (P::Scalar::ONE / dt);
         check_points(&[v], "velocity")?;
+        self.rest
+            .wake_if(v != P::default() || Sh::flat(&self.state.vel)[i] != v);
         Sh::flat_mut(&mut self.state.pos)[i] = p;
         Sh::flat_mut(&mut self.state.vel)[i] = v;
         Ok(())
@@ -410,6 +433,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 (pa * sa + pb * sb, va * sa + vb * sb)
             }
         };
+        self.rest.wake_if((pa, va) != (p, v));
+        other.rest.wake_if((pb, vb) != (p, v));
         Sh::flat_mut(&mut self.state.pos)[i] = p;
         Sh::flat_mut(&mut self.state.vel)[i] = v;
         Sh2::flat_mut(&mut other.state.pos)[j] = p;
@@ -428,7 +453,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if self.inv_masses()[i] <= P::Scalar::ZERO {
             return Err(Error::Pinned { index: i });
         }
-        Sh::flat_mut(&mut self.state.vel)[i] = v;
+        let old = &mut Sh::flat_mut(&mut self.state.vel)[i];
+        self.rest.wake_if(*old != v);
+        *old = v;
         Ok(())
     }
 
@@ -466,76 +493,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         Ok(())
     }
 
-    /// A checksum of everything that shapes the steps to come, for rollback netplay: the
-    /// clock, every particle's position, velocity and inverse mass, every live spring's
-    /// ends, rest length and material (a snapped or cut spring is gone from it), gravity,
-    /// the drag, the integrator's memory ([`Integrator::hash_memory`]) and whether the
-    /// last step left a held chain settled. Not the settings' other fields, nor snap
-    /// limits: a game sets those alike on every peer. See [`StateHash`] for the checksum.
-    ///
-    /// **Snapshots.** The system is `Clone` and holds no pointer and no heap: a clone is
-    /// a snapshot, and assigning it back rolls the simulation back exactly (the test
-    /// `rollback::a_replay_after_a_rollback_hashes_as_the_first_run`, in the style of
-    /// GGRS's sync test). Its size is `size_of` the object: a `Rope<Vec2<f32>, 8>` takes
-    /// 348 bytes (`Q16` the same), a `Rope<Vec3<f32>, 16>` 768, a `Cloth<Vec3<f32>, 8, 8>`
-    /// 1 964 and with `DirectSprings` (its factor) 6 992 (`rollback::snapshots_are_*`).
-    ///
-    /// **Determinism.** The same state, inputs and calls give the same bits, so the same
-    /// checksum: in `Q16` on every platform (integer arithmetic only); in CI the host, a
-    /// `.wasm` under node and the Cortex-M0 (`Q16`) and M4F (`f32`) reproduce the
-    /// scripted scene's golden checksums (`tests/golden.txt`); in `f32` and `f64` on every
-    /// platform that rounds IEEE 754 operations alike, with the same build: ropes and cloth
-    /// step with `+ − × ÷` and square roots, which IEEE 754 rounds exactly, so the `std`
-    /// feature's math (the default on a hosted target) and `libm`'s (on a microcontroller)
-    /// agree on them. What breaks it: functions past the square root taken from `std` on
-    /// different platforms (`sin`, `atan2`, `exp` may differ in their last bit), the
-    /// `micromath` feature (approximations), fused multiply-adds (`-C
-    /// target-feature=+fma`, or a target whose compiler contracts `a·b + c`), a different
-    /// feature set or crate version between peers, and calls in a different order.
-    /// Cost: a 64-bit multiply a 32-bit word, `2·(2·DIM + 1)` words a particle and 8 a
-    /// spring.
-    ///
-    /// ```
-    /// use dunas::prelude::*;
-    /// let settings = Settings { gravity: Vec2::new(0.0f32, -9.81), ..Settings::default() };
-    /// let material = Material { stiffness: 400.0, damping: 0.5 };
-    /// let mut rope: Rope<Vec2<f32>, 8> =
-    ///     Rope::new(Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), 1.0, material, settings)?;
-    /// let saved = rope.clone();
-    /// let first: Vec<u64> = (0..8).map(|_| { rope.step(1.0 / 60.0).unwrap(); rope.state_hash() }).collect();
-    /// rope = saved; // roll back
-    /// let replay: Vec<u64> = (0..8).map(|_| { rope.step(1.0 / 60.0).unwrap(); rope.state_hash() }).collect();
-    /// assert_eq!(first, replay);
-    /// # Ok::<(), dunas::Error>(())
-    /// ```
-    pub fn state_hash(&self) -> u64 {
-        let mut hash = StateHash::new();
-        hash.add_scalar(self.time);
-        let particles = Sh::flat(&self.state.pos)
-            .iter()
-            .zip(Sh::flat(&self.state.vel));
-        for ((&x, &v), &w) in particles.zip(Sh::flat(&self.inv_mass)) {
-            hash.add_point(x);
-            hash.add_point(v);
-            hash.add_scalar(w);
-        }
-        let mut live = 0u32;
-        self.topology.for_each_spring(|a, b, rest, m| {
-            hash.add_u32(a as u32);
-            hash.add_u32(b as u32);
-            for value in [rest, m.stiffness, m.damping] {
-                hash.add_scalar(value);
-            }
-            live = live.wrapping_add(1);
-        });
-        hash.add_u32(live);
-        hash.add_point(self.settings.gravity);
-        hash.add_scalar(self.settings.damping);
-        I::hash_memory(&self.memory, &mut hash);
-        hash.add_u64(self.settled.map_or(0, |key| (1 << 32) | u64::from(key)));
-        hash.finish()
-    }
-
     /// Total energy: kinetic + spring + gravitational (relative to the origin), for tests and
     /// diagnostics. Pinned particles count as infinitely heavy and still. Costs a division per
     /// particle and a square root per spring; may saturate in `Q16`, and overflow to ±∞ in
@@ -561,9 +518,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         (omega, gamma + self.settings.damping)
     }
 
+    /// After a change of masses or springs: the stiffness bound brought up to date, and
+    /// awake.
     fn update_spring_rate(&mut self) {
         let (omega, gamma) = spring_bound::<_, Sh>(&self.inv_mass, &self.topology);
         self.spring_rate = omega + gamma;
+        self.rest.wake();
     }
 
     /// The substeps for a frame of `dt` seconds and their length: enough that `(ω + γ)·h`
@@ -601,6 +561,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// # Errors
     /// See [`step_with`](Self::step_with).
+    #[inline]
     pub fn step(&mut self, dt: P::Scalar) -> Result<StepInfo<P::Scalar>, Error> {
         self.step_with(dt, ())
     }
@@ -621,12 +582,16 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ///
     /// A `Q16` force that saturates is not an error (refusing it would freeze a rope whose
     /// hand keeps pulling): it is clamped, and [`StepInfo::saturated`] says so.
+    #[inline]
     pub fn step_with<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        self.step_resolving(dt, forces, P::Scalar::ZERO, |_, _, _| {})
+        if self.sleeps_under(&forces, Some(0)) && dt >= P::Scalar::ZERO && dt.is_finite() {
+            return Ok(self.doze(dt));
+        }
+        self.step_resolving(dt, forces, (P::Scalar::ZERO, Some(0)), |_, _, _| {})
     }
 
     /// The fastest a free particle can go this frame: its speed now plus what gravity adds
@@ -642,16 +607,32 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
-    /// time left in the frame))`, with at least `floor` substeps a second.
+    /// time left in the frame))`, with at least `floor` substeps a second; `near` is the key
+    /// of the colliders within reach (`Some(0)` for none, `None` when one moves), for
+    /// [`Sleep`](crate::Sleep).
+    // Kept out of line on a hosted target, so that the step of a sleeping object (the top
+    // of `step_with`) is inlined into the caller without this step's prologue; inlined on a
+    // microcontroller, where it saves half a kilobyte of flash.
+    #[cfg_attr(not(target_os = "none"), inline(never))]
     pub(crate) fn step_resolving<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         mut forces: F,
-        floor: P::Scalar,
+        (floor, near): (P::Scalar, Option<u64>),
         mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
+        let key = self.rest.key(&forces, near);
+        if self.rest.sleeps_through(key) {
+            check_non_negative(dt, "dt")?;
+            return Ok(self.doze(dt));
+        }
         let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
         let solved = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
+        if self.rest.is_on() {
+            let quiet = !slow_motion && solved.fits;
+            self.rest
+                .count(key.filter(|_| quiet), self.fastest_squared());
+        }
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -665,6 +646,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             converged: solved.converged,
             stretch: solved.stretch,
             residual: solved.residual,
+            asleep: false,
         })
     }
 
@@ -681,6 +663,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         mut forces: F,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
+        self.rest.wake();
         let solved = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
@@ -691,6 +674,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             converged: solved.converged,
             stretch: solved.stretch,
             residual: solved.residual,
+            asleep: false,
         })
     }
 

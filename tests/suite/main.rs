@@ -34,6 +34,7 @@ mod rollback;
 mod rope;
 mod samplers;
 mod sea;
+mod sleep;
 mod snapshots;
 mod soak;
 mod spline_rope;

@@ -543,6 +543,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
             converged,
             stretch: P::Scalar::ZERO,
             residual: P::Scalar::ZERO,
+            asleep: false,
         })
     }
 

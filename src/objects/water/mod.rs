@@ -342,5 +342,6 @@ fn stepped<S: Scalar>(n: usize, h: S, slow_motion: bool) -> StepInfo<S> {
         converged: true,
         stretch: S::ZERO,
         residual: S::ZERO,
+        asleep: false,
     }
 }
