@@ -275,137 +275,214 @@ pub fn f32_bits(x: f32) -> u32 {
     x.to_bits()
 }
 
+/// The template firmware crate's SysTick meter (`boards/template`), which the Arm boards use.
+#[cfg(all(target_os = "none", target_arch = "arm"))]
+#[path = "../../boards/template/src/meter.rs"]
+mod meter;
+
 #[cfg(target_os = "none")]
 mod board {
-    use core::arch::asm;
     use core::panic::PanicInfo;
 
-    use core::sync::atomic::{AtomicU32, Ordering};
-
-    use cortex_m::peripheral::{SYST, syst::SystClkSource};
-    use cortex_m_rt::{entry, exception};
-    use cortex_m_semihosting::{debug, hio};
-
     use super::*;
+    use arch::{Counter, exit, put};
 
-    /// Instruction counts from SysTick: under `-icount` the core clock advances by the same
-    /// amount per instruction, so ticks / ticks-per-instruction is exact.
-    struct SysTick {
-        syst: SYST,
-        /// Ticks of the measurement itself (two back-to-back reads).
-        overhead: u32,
-        /// Ticks per 1000 instructions, from a sled of 1000 `nop`s.
-        per_1000: u32,
-    }
+    /// A Cortex-M: SysTick counts (the template firmware crate's meter), semihosting prints
+    /// (`-semihosting-config` in the runner).
+    #[cfg(target_arch = "arm")]
+    mod arch {
+        use cortex_m_rt::entry;
+        use cortex_m_semihosting::{debug, hio};
 
-    impl SysTick {
-        fn ticks(&mut self, f: impl FnOnce()) -> u32 {
-            let start = SYST::get_current();
-            f();
-            let end = SYST::get_current();
-            start.wrapping_sub(end) & 0x00ff_ffff // the counter counts down, 24 bits
+        use super::{Meter, fail};
+
+        pub use super::super::meter::Meter as Counter;
+
+        impl Meter for Counter {
+            fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+                Counter::count(self, f)
+            }
+
+            fn count_long<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+                Counter::count_long(self, f)
+            }
         }
 
-        fn new(mut syst: SYST) -> SysTick {
-            syst.set_clock_source(SystClkSource::Core);
-            syst.set_reload(0x00ff_ffff);
-            syst.clear_current();
-            syst.enable_counter();
-            let mut s = SysTick {
-                syst,
-                overhead: 0,
-                per_1000: 1,
+        /// Writes to the host's standard output.
+        pub fn put(bytes: &[u8]) {
+            if let Ok(mut out) = hio::hstdout() {
+                let _ = out.write_all(bytes);
+            }
+        }
+
+        pub fn exit(ok: bool) -> ! {
+            debug::exit(if ok {
+                debug::EXIT_SUCCESS
+            } else {
+                debug::EXIT_FAILURE
+            });
+            loop {}
+        }
+
+        pub fn stack_pointer() -> usize {
+            cortex_m::register::msp::read() as usize
+        }
+
+        #[entry]
+        fn main() -> ! {
+            let Some(peripherals) = cortex_m::Peripherals::take() else {
+                fail(b"peripherals")
             };
-            s.overhead = s.ticks(|| {});
-            // Two calls alike but for 25 000 more turns of a 4-instruction loop in one: the
-            // difference is 100 000 instructions, from a dozen bytes of code. (QEMU's counter
-            // reads are some 100 ticks coarse: a sled of 500 instructions was 0.8% off.)
-            let long = s.ticks(|| countdown(50_000));
-            let short = s.ticks(|| countdown(25_000));
-            s.per_1000 = (long.saturating_sub(short) / 100).max(1);
-            s
+            super::main(Counter::new(peripherals.SYST))
         }
     }
 
-    /// `turns` turns of a loop of exactly 4 instructions (`subs`, two `nop`s, `bne`).
-    #[inline(never)]
-    fn countdown(turns: u32) {
-        unsafe {
-            asm!(
-                "2:",
-                "subs r0, #1",
-                "nop",
-                "nop",
-                "bne 2b",
-                inout("r0") turns => _,
-                options(nomem, nostack)
-            )
+    /// A RISC-V core in machine mode: `minstret` counts (exact under `-icount`), semihosting
+    /// prints (QEMU's `-semihosting-config`).
+    #[cfg(target_arch = "riscv32")]
+    mod arch {
+        use core::arch::asm;
+
+        use super::Meter;
+
+        /// Instruction counts from `minstret`.
+        pub struct Counter {
+            /// Counts of the measurement itself (two back-to-back reads).
+            overhead: u32,
+            /// Counts per 1000 instructions (see [`calibrate`]): 1000 under QEMU.
+            pub per_1000: u32,
         }
-    }
 
-    impl SysTick {
-        /// Instructions in `ticks`, the meter's own taken out, rounded; in 32-bit arithmetic
-        /// (a 64-bit division would cost the M0 1.3 KB of flash), exact up to 2³² ticks,
-        /// some 200 million instructions.
-        fn instructions(&self, ticks: u64) -> u32 {
-            let t =
-                u32::try_from(ticks.saturating_sub(u64::from(self.overhead))).unwrap_or(u32::MAX);
-            let p = self.per_1000;
-            (t / p) * 1000 + ((t % p) * 1000 + p / 2) / p
-        }
-    }
-
-    /// The counter's wraps during a [`Meter::count_long`].
-    static WRAPS: AtomicU32 = AtomicU32::new(0);
-
-    #[exception]
-    fn SysTick() {
-        // A load and a store (the Cortex-M0 has no atomic add); nothing else writes it.
-        WRAPS.store(
-            WRAPS.load(Ordering::Relaxed).wrapping_add(1),
-            Ordering::Relaxed,
-        );
-    }
-
-    /// Ticks since the count began, from the wraps and the counter read so that they agree.
-    fn ticks_with_wraps() -> u64 {
-        loop {
-            let wraps = WRAPS.load(Ordering::Relaxed);
-            let current = SYST::get_current();
-            if WRAPS.load(Ordering::Relaxed) == wraps {
-                return (u64::from(wraps) << 24) + u64::from(0x00ff_ffff - current);
-            }
-        }
-    }
-
-    impl Meter for SysTick {
-        fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
-            let mut out = None;
-            let t = self.ticks(|| out = Some(f()));
-            match out {
-                Some(r) => (r, self.instructions(u64::from(t))),
-                None => fail(b"meter"),
+        /// `minstret` and `minstreth`, read so that they agree.
+        fn retired() -> u64 {
+            loop {
+                let (hi, lo, again): (u32, u32, u32);
+                unsafe {
+                    asm!(
+                        "csrr {0}, minstreth",
+                        "csrr {1}, minstret",
+                        "csrr {2}, minstreth",
+                        out(reg) hi, out(reg) lo, out(reg) again,
+                        options(nomem, nostack)
+                    )
+                };
+                if hi == again {
+                    return (u64::from(hi) << 32) | u64::from(lo);
+                }
             }
         }
 
-        fn count_long<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
-            WRAPS.store(0, Ordering::Relaxed);
-            self.syst.enable_interrupt();
-            let start = ticks_with_wraps();
-            let out = f();
-            let end = ticks_with_wraps();
-            self.syst.disable_interrupt();
-            (out, self.instructions(end - start))
+        impl Counter {
+            fn retired_during(&mut self, f: impl FnOnce()) -> u64 {
+                let start = retired();
+                f();
+                retired() - start
+            }
+
+            fn new() -> Counter {
+                let mut s = Counter {
+                    overhead: 0,
+                    per_1000: 1,
+                };
+                s.overhead = s.retired_during(|| {}) as u32;
+                s.per_1000 = calibrate(|turns| s.retired_during(|| countdown(turns)) as u32);
+                s
+            }
+        }
+
+        /// Ticks per 1000 instructions, from `ticks(turns)`, the ticks of `turns` turns of a
+        /// 4-instruction loop: two calls alike but for 25 000 more turns in one, whose difference
+        /// is 100 000 instructions from a dozen bytes of code. (As the Arm meter does.)
+        fn calibrate(mut ticks: impl FnMut(u32) -> u32) -> u32 {
+            let long = ticks(50_000);
+            let short = ticks(25_000);
+            (long.saturating_sub(short) / 100).max(1)
+        }
+
+        /// Instructions in `ticks`, the meter's own `overhead` taken out, rounded; in 32-bit
+        /// arithmetic (a 64-bit division would cost the M0 1.3 KB of flash), exact up to 2³²
+        /// ticks, some 200 million instructions.
+        fn instructions(ticks: u64, overhead: u32, per_1000: u32) -> u32 {
+            let t = u32::try_from(ticks.saturating_sub(u64::from(overhead))).unwrap_or(u32::MAX);
+            (t / per_1000) * 1000 + ((t % per_1000) * 1000 + per_1000 / 2) / per_1000
+        }
+
+        /// `turns` turns of a loop of exactly 4 instructions (`addi`, two `nop`s, `bnez`).
+        #[inline(never)]
+        pub fn countdown(turns: u32) {
+            unsafe {
+                asm!(
+                    "2:",
+                    "addi {0}, {0}, -1",
+                    "nop",
+                    "nop",
+                    "bnez {0}, 2b",
+                    inout(reg) turns => _,
+                    options(nomem, nostack)
+                )
+            }
+        }
+
+        impl Meter for Counter {
+            fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+                let mut out = None;
+                let n = self.retired_during(|| out = Some(f()));
+                match out {
+                    Some(r) => (r, instructions(n, self.overhead, self.per_1000)),
+                    None => super::fail(b"meter"),
+                }
+            }
+        }
+
+        /// A semihosting call (`op`, `arg`), in the uncompressed sequence the RISC-V
+        /// semihosting spec asks for; what it returns.
+        fn semihost(op: usize, arg: usize) -> usize {
+            let out: usize;
+            unsafe {
+                asm!(
+                    ".option push",
+                    ".option norvc",
+                    ".balign 16",
+                    "slli x0, x0, 0x1f",
+                    "ebreak",
+                    "srai x0, x0, 7",
+                    ".option pop",
+                    inout("a0") op => out,
+                    in("a1") arg,
+                    options(nostack)
+                )
+            };
+            out
+        }
+
+        /// Writes to the host's standard output (`SYS_OPEN` of `:tt` for writing, then
+        /// `SYS_WRITE`; `SYS_WRITEC` would go to QEMU's console, its standard error).
+        pub fn put(bytes: &[u8]) {
+            let name = b":tt\0";
+            let handle = semihost(0x01, [name.as_ptr() as usize, 4, 3].as_ptr() as usize);
+            semihost(0x05, [handle, bytes.as_ptr() as usize, bytes.len()].as_ptr() as usize);
+        }
+
+        /// `SYS_EXIT` with the application's exit (0) or a run-time error (1).
+        pub fn exit(ok: bool) -> ! {
+            semihost(0x18, if ok { 0x2_0026 } else { 0x2_0023 });
+            loop {}
+        }
+
+        pub fn stack_pointer() -> usize {
+            let sp: usize;
+            unsafe { asm!("mv {0}, sp", out(reg) sp, options(nomem, nostack)) };
+            sp
+        }
+
+        #[riscv_rt::entry]
+        fn main() -> ! {
+            super::main(Counter::new())
         }
     }
 
-    /// Writes to the host's standard output; integers by hand, so that `core::fmt` (20-30 KiB
-    /// with its float code) stays out of flash.
-    fn put(bytes: &[u8]) {
-        if let Ok(mut out) = hio::hstdout() {
-            let _ = out.write_all(bytes);
-        }
-    }
+    // Integers are written by hand, so that `core::fmt` (20-30 KiB with its float code)
+    // stays out of flash.
 
     /// `key=value` in decimal, or in hex (8 digits) with `hex`.
     fn put_number(key: &[u8], value: u32, hex: bool) {
@@ -461,8 +538,7 @@ mod board {
         put(b"error=");
         put(what);
         put(b"\n");
-        debug::exit(debug::EXIT_FAILURE);
-        loop {}
+        exit(false)
     }
 
     const PAINT: u32 = 0xdead_beef;
@@ -476,7 +552,7 @@ mod board {
     fn paint_stack() {
         unsafe {
             let mut p = core::ptr::addr_of_mut!(__sheap);
-            let sp = cortex_m::register::msp::read() as *mut u32;
+            let sp = arch::stack_pointer() as *mut u32;
             while p < sp.sub(16) {
                 p.write_volatile(PAINT);
                 p = p.add(1);
@@ -496,24 +572,20 @@ mod board {
     }
 
     #[cfg(target_abi = "eabihf")]
-    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+    fn run(meter: &mut Counter) -> Result<Report, Error> {
         put(b"format=f32\n");
         crate::simulate::<f32>(meter, f32_bits)
     }
 
     #[cfg(not(target_abi = "eabihf"))]
-    fn run(meter: &mut SysTick) -> Result<Report, Error> {
+    fn run(meter: &mut Counter) -> Result<Report, Error> {
         put(b"format=q16\n");
         crate::simulate::<Q16>(meter, q16_bits)
     }
 
-    #[entry]
-    fn main() -> ! {
+    /// Runs the example with `meter` and prints its report.
+    fn main(mut meter: Counter) -> ! {
         paint_stack();
-        let Some(peripherals) = cortex_m::Peripherals::take() else {
-            fail(b"peripherals")
-        };
-        let mut meter = SysTick::new(peripherals.SYST);
         match run(&mut meter) {
             Ok(r) => {
                 for row in r.frame.chunks(W) {
@@ -564,8 +636,7 @@ mod board {
                 put_number(b"mean_frame_instructions", r.mean_frame_instructions, false);
                 put_number(b"ticks_per_1000_instructions", meter.per_1000, false);
                 put_number(b"stack_bytes", stack_high_water(), false);
-                debug::exit(debug::EXIT_SUCCESS);
-                loop {}
+                exit(true)
             }
             Err(Error::Diverged) => fail(b"diverged"),
             Err(_) => fail(b"setup"),

@@ -83,14 +83,12 @@ pub const MAX_STRETCH: (u32, u32) = (1, 10);
 /// A particle with inverse mass 0 is pinned: the integrators never move it, and the game moves
 /// it with [`set_position`](Self::set_position) (a rope held by a hand).
 #[derive(Clone)]
-#[repr(C)]
 pub struct MassSpring<P: Point, Sh: Shape, T, I: Integrator = SymplecticEuler> {
     pub(in crate::physics) state: State<P, Sh>,
     pub(in crate::physics) inv_mass: Sh::PerParticle<P::Scalar>,
     pub(in crate::physics) topology: T,
     pub(in crate::physics) time: P::Scalar,
-    /// Whether it may sleep, and whether it does (next to the clock: a sleeping step
-    /// touches nothing else).
+    /// Whether it may sleep, and whether it does.
     pub(in crate::physics) rest: Rest<P::Scalar>,
     /// `ω + γ` of the springs alone (see [`stiffness_bound`](Self::stiffness_bound)), kept
     /// current by every method that changes masses or springs; after springs break it may
