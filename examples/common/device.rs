@@ -460,7 +460,10 @@ mod board {
         pub fn put(bytes: &[u8]) {
             let name = b":tt\0";
             let handle = semihost(0x01, [name.as_ptr() as usize, 4, 3].as_ptr() as usize);
-            semihost(0x05, [handle, bytes.as_ptr() as usize, bytes.len()].as_ptr() as usize);
+            semihost(
+                0x05,
+                [handle, bytes.as_ptr() as usize, bytes.len()].as_ptr() as usize,
+            );
         }
 
         /// `SYS_EXIT` with the application's exit (0) or a run-time error (1).
