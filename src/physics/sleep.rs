@@ -168,13 +168,16 @@ impl<S: Scalar> Rest<S> {
     }
 
     /// Whether the step keyed `key` finds the object asleep under the same key (then it
-    /// stays asleep); otherwise it is awake from here on.
+    /// stays asleep); otherwise it is awake from here on, and one that was asleep counts its
+    /// still steps afresh (so that it takes `frames` steps to answer what woke it).
     #[inline]
     pub(crate) fn sleeps_through(&mut self, key: Option<u64>) -> bool {
         if self.asleep && self.asleep() == key {
             return true;
         }
-        self.asleep = false;
+        if self.asleep {
+            self.wake();
+        }
         false
     }
 

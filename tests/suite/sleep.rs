@@ -383,3 +383,26 @@ fn bad_sleep_settings_are_refused() {
     off.set_sleep(None).unwrap();
     assert_ne!(plain, off.state_hash());
 }
+
+/// A rope woken by a change too small to move it fast (an anchor moved 1 mm) answers it for
+/// `frames` steps before it may sleep again: waking counts the still steps afresh.
+#[test]
+fn a_woken_rope_takes_its_still_steps_again() {
+    let mut rope = hanging::<f32, _>(SymplecticEuler);
+    let soft = Material {
+        stiffness: 5.0,
+        damping: 1.0,
+    };
+    let mut hand = AnchorSpring::new(7, Vec2::new(3.0, -6.0), 0.0, soft).unwrap();
+    let asleep = (0..1200).any(|_| rope.step_with(1.0 / 60.0, &mut hand).unwrap().asleep);
+    assert!(asleep);
+    hand.set_anchor(Vec2::new(3.001, -6.0)).unwrap();
+    let frames = usize::from(Sleep::<f32>::default().frames);
+    for k in 0..frames {
+        let info = rope.step_with(1.0 / 60.0, &mut hand).unwrap();
+        assert!(
+            !info.asleep,
+            "asleep again {k} steps after the anchor moved"
+        );
+    }
+}
