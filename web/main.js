@@ -1,17 +1,22 @@
 // The page's loader and painter: instantiates dunas_web.wasm (no bindings generator), runs
-// it at 60 steps a second, draws its draw list on the canvas, and turns the mouse or a
-// touch into clicks and swipes. `window.dunas` exposes the game to the browser test.
+// it at 60 steps a second, draws its draw list on a canvas that fills the window (its
+// pixels the screen's, up to twice the CSS pixels), and turns the mouse or a finger into
+// clicks (taps) and swipes. `window.dunas` exposes the game to the browser test.
 
 // Record styles: the values of `Style` in web/src/draw_list.rs.
 const SNOW = 0, ROPE = 1, PARTICLES = 2, HAND = 3, PENGUIN = 4, TRAIL = 5, TARGET = 6,
   SEA = 7, TRIANGLE = 8, SPAR = 9;
 const STEP_MS = 1000 / 60;
+// A touch screen taps where a mouse clicks.
+const TOUCH = matchMedia('(pointer: coarse)').matches || navigator.maxTouchPoints > 0;
+const CLICK = TOUCH ? 'Tap' : 'Click';
 const HELP = [
-  'Click to let go of the penguin, swipe across the rope to cut it; click again once it lands.',
-  'Click to send a gust through the fleet.',
+  `${CLICK} to let go of the penguin, swipe across the rope to cut it; ${CLICK.toLowerCase()} again once it lands.`,
+  `${CLICK} to send a gust through the fleet.`,
 ];
 
 const canvas = document.getElementById('view');
+const stage = document.getElementById('stage');
 const ctx = canvas.getContext('2d');
 const status = document.getElementById('status');
 const showParticles = document.getElementById('particles');
@@ -21,8 +26,23 @@ const wasm = instance.exports;
 
 let scene = 0;
 let length = 0;
+// Canvas pixels a CSS pixel: line widths are given in CSS pixels.
+let unit = 1;
 // The cost of `frame()` (a step and its draw list), over the last 60 frames.
 const costs = [];
+
+// The canvas takes the stage's size in screen pixels (at most 2 a CSS pixel); the scene is
+// told, and goes on framed anew.
+function fit() {
+  const r = stage.getBoundingClientRect();
+  unit = Math.min(window.devicePixelRatio || 1, 2);
+  const w = Math.max(1, Math.round(r.width * unit)), h = Math.max(1, Math.round(r.height * unit));
+  if (w === canvas.width && h === canvas.height) return;
+  canvas.width = w;
+  canvas.height = h;
+  wasm.resize(w, h);
+  if (length > 0) draw();
+}
 
 function start(which) {
   scene = which;
@@ -91,11 +111,11 @@ function sea(horizon, time) {
   ctx.fillRect(0, horizon, w, h - horizon);
   // Swell: crests that bunch up towards the horizon and roll in with time.
   ctx.strokeStyle = 'rgba(200, 230, 250, 0.35)';
-  ctx.lineWidth = 1;
+  ctx.lineWidth = unit;
   for (let n = 1; n < 16; n++) {
     const d = n + ((time * 0.4) % 1);
     const y = horizon + (h - horizon) * (1 - 1 / (0.35 * d + 1)) * 1.25;
-    const amp = 1 + 0.35 * d;
+    const amp = (1 + 0.35 * d) * unit;
     ctx.beginPath();
     for (let x = 0; x <= w; x += 8) {
       const yy = y + amp * Math.sin(x * 0.05 / amp + time * 1.5 + n);
@@ -137,24 +157,24 @@ function draw() {
         ctx.fillStyle = '#f7fbff';
         ctx.fillRect(0, p[1], canvas.width, canvas.height - p[1]);
         ctx.strokeStyle = '#b9cde0';
-        ctx.lineWidth = 2;
+        ctx.lineWidth = 2 * unit;
         polyline(p);
         break;
       case ROPE:
         ctx.strokeStyle = '#7a5230';
-        ctx.lineWidth = 5;
+        ctx.lineWidth = 5 * unit;
         ctx.lineCap = ctx.lineJoin = 'round';
         polyline(p);
         break;
       case PARTICLES:
         if (!showParticles.checked) break;
         ctx.strokeStyle = 'rgba(200, 40, 40, 0.8)';
-        ctx.lineWidth = 1;
+        ctx.lineWidth = unit;
         polyline(p);
         ctx.fillStyle = '#c82828';
         for (let i = 0; i + 1 < p.length; i += 2) {
           ctx.beginPath();
-          ctx.arc(p[i], p[i + 1], 3, 0, 2 * Math.PI);
+          ctx.arc(p[i], p[i + 1], 3 * unit, 0, 2 * Math.PI);
           ctx.fill();
         }
         break;
@@ -178,19 +198,23 @@ function draw() {
         break;
       case TRAIL:
         ctx.fillStyle = 'rgba(40, 60, 90, 0.5)';
-        for (let i = 0; i + 1 < p.length; i += 4) ctx.fillRect(p[i] - 1.5, p[i + 1] - 1.5, 3, 3);
+        for (let i = 0; i + 1 < p.length; i += 4) {
+          ctx.fillRect(p[i] - 1.5 * unit, p[i + 1] - 1.5 * unit, 3 * unit, 3 * unit);
+        }
         break;
-      case TARGET:
+      case TARGET: {
+        const u = unit;
         ctx.strokeStyle = '#2b6e2b';
-        ctx.lineWidth = 2;
-        polyline([p[0], p[1], p[0], p[1] - 28]);
+        ctx.lineWidth = 2 * u;
+        polyline([p[0], p[1], p[0], p[1] - 28 * u]);
         ctx.fillStyle = '#3c9a3c';
         ctx.beginPath();
-        ctx.moveTo(p[0], p[1] - 28);
-        ctx.lineTo(p[0] + 16, p[1] - 22);
-        ctx.lineTo(p[0], p[1] - 16);
+        ctx.moveTo(p[0], p[1] - 28 * u);
+        ctx.lineTo(p[0] + 16 * u, p[1] - 22 * u);
+        ctx.lineTo(p[0], p[1] - 16 * u);
         ctx.fill();
         break;
+      }
       case SEA:
         sea(p[0], p[1]);
         break;
@@ -233,7 +257,6 @@ function report() {
     line += `\nlanded at x = ${wasm.landed_x().toFixed(3)} m; the closed-form arc from its release lands at ${wasm.arc_x().toFixed(3)} m`;
   }
   status.textContent = line;
-  status.style.whiteSpace = 'pre-line';
 }
 
 let last = performance.now(), owed = 0;
@@ -265,7 +288,7 @@ canvas.addEventListener('pointerdown', (e) => {
 canvas.addEventListener('pointermove', (e) => {
   if (!press) return;
   const p = at(e);
-  if (Math.hypot(p[0] - press.from[0], p[1] - press.from[1]) > 8) press.swiped = true;
+  if (Math.hypot(p[0] - press.from[0], p[1] - press.from[1]) > 8 * unit) press.swiped = true;
   // A swipe cuts once: the first stroke that crosses the rope.
   if (press.swiped && !press.cut) press.cut = wasm.swipe(press.last[0], press.last[1], p[0], p[1]) === 1;
   press.last = p;
@@ -288,6 +311,13 @@ window.dunas = {
   },
   // How many curves of rope the last frame drew.
   drawnPieces: () => records().filter(([style]) => style === ROPE).length,
+  // The penguin's centre in page coordinates, as the last frame drew it.
+  penguinOnPage() {
+    const r = canvas.getBoundingClientRect();
+    const found = records().find(([style]) => style === PENGUIN);
+    return found && [r.left + found[1][0] * r.width / canvas.width,
+      r.top + found[1][1] * r.height / canvas.height];
+  },
   // Mean ms of a frame over `frames` frames of a fresh catapult game, in this browser.
   bench(frames) {
     const t0 = performance.now();
@@ -297,5 +327,7 @@ window.dunas = {
   frameCost: () => mean(costs),
 };
 
+fit();
 start(0);
+new ResizeObserver(fit).observe(stage);
 requestAnimationFrame(tick);

@@ -6,7 +6,11 @@
 //   release;
 // - a swipe across the rope cuts it, and the two pieces are drawn as two curves;
 // - a catapult frame (step + draw list) costs at most 1 ms in the browser;
-// - the boat scene runs without slow motion.
+// - the boat scene runs without slow motion;
+// - on a phone (412×915 CSS px, touch, held upright and then sideways): the page does not
+//   scroll, the scene fills the screen, the help says "tap", the rope is drawn at least a
+//   fifth of the screen's short side long, a tap lets go, the camera keeps the flying
+//   penguin on screen, and a finger swipe cuts the rope.
 // Screenshots go to target/web/. Run: `npm --prefix web test` (after `npm --prefix web ci`).
 import { statSync, mkdirSync } from 'node:fs';
 import path from 'node:path';
@@ -58,7 +62,7 @@ try {
   await page.mouse.click(box.x + box.width * 0.7, box.y + box.height * 0.3);
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 1, null, { timeout: 5000 });
   await page.waitForTimeout(400);
-  await page.locator('main').screenshot({ path: path.join(out, 'catapult.png') });
+  await page.screenshot({ path: path.join(out, 'catapult.png') });
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 2, null, { timeout: 20000 });
   const { landed, arc, stretch } = await page.evaluate(() => ({
     landed: window.dunas.wasm.landed_x(),
@@ -68,18 +72,15 @@ try {
   check(Math.abs(landed - arc) <= 0.01,
     `the penguin landed at x = ${landed.toFixed(4)} m; the closed-form arc lands at ${arc.toFixed(4)} m (within 1 cm)`);
   check(stretch <= 0.005, `the rope's largest stretch under the penguin: ${(stretch * 100).toFixed(3)}% (at most 0.5%)`);
-  await page.locator('main').screenshot({ path: path.join(out, 'landed.png') });
+  await page.screenshot({ path: path.join(out, 'landed.png') });
 
   // A new game (a click once landed), then a swipe across the rope between particles 3 and 4.
   await page.mouse.click(box.x + box.width * 0.7, box.y + box.height * 0.3);
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 0 && window.dunas.wasm.time() > 1.0);
-  const [a, b] = await page.evaluate(() => [window.dunas.particleOnPage(3), window.dunas.particleOnPage(4)]);
-  const mid = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
-  const along = Math.hypot(b[0] - a[0], b[1] - a[1]);
-  const across = [-(b[1] - a[1]) / along * 80, (b[0] - a[0]) / along * 80];
-  await page.mouse.move(mid[0] - across[0], mid[1] - across[1]);
+  const [from, to] = await swipeAcross(page, box, 200);
+  await page.mouse.move(...from);
   await page.mouse.down();
-  await page.mouse.move(mid[0] + across[0], mid[1] + across[1], { steps: 12 });
+  await page.mouse.move(...to);
   await page.mouse.up();
   await page.waitForTimeout(600);
   const { pieces, drawn } = await page.evaluate(() => ({
@@ -87,7 +88,7 @@ try {
     drawn: window.dunas.drawnPieces(),
   }));
   check(pieces === 2 && drawn === 2, `the swipe cut the rope: ${pieces} pieces, drawn as ${drawn} curves`);
-  await page.locator('main').screenshot({ path: path.join(out, 'cut.png') });
+  await page.screenshot({ path: path.join(out, 'cut.png') });
 
   // The catapult's frame cost in this browser: 5 rounds of 600 frames of a fresh game.
   const rounds = [];
@@ -109,7 +110,9 @@ try {
   }));
   check(boats.slow === 0 && boats.time > 3.0,
     `the boats sailed ${boats.time.toFixed(1)} s with ${boats.slow} slow frames; a frame of 9 sails costs ${boats.cost.toFixed(3)} ms`);
-  await page.locator('main').screenshot({ path: path.join(out, 'boats.png') });
+  await page.screenshot({ path: path.join(out, 'boats.png') });
+
+  await phoneChecks(browser, origin, errors, outside);
 
   check(errors.length === 0, `no console errors${errors.length ? `: ${errors.join(' | ')}` : ''}`);
   check(outside.length === 0, `no request beyond localhost${outside.length ? `: ${outside.join(' ')}` : ''}`);
@@ -118,6 +121,117 @@ try {
   await browser.close();
   server.close();
 }
+/// The page on a phone: 412×915 CSS px at 2.625 screen pixels each, touch only.
+async function phoneChecks(browser, origin, errors, outside) {
+  const phone = await browser.newContext({
+    viewport: { width: 412, height: 915 }, deviceScaleFactor: 2.625, isMobile: true, hasTouch: true,
+  });
+  const page = await phone.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`phone: ${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`phone: ${e}`));
+  await page.route('**/*', (route) => {
+    const url = route.request().url();
+    if (url.startsWith(origin)) return route.continue();
+    outside.push(url);
+    return route.abort();
+  });
+  await page.goto(`${origin}/`);
+  await page.waitForFunction(() => window.dunas && window.dunas.wasm.time() > 1.0, null, { timeout: 20000 });
+  // The screen as the page lays it out, and the rope's drawn length along its particles.
+  const layout = () => page.evaluate(() => {
+    const r = document.getElementById('view').getBoundingClientRect();
+    let rope = 0;
+    for (let i = 0; i < 7; i++) {
+      const [a, b] = [window.dunas.particleOnPage(i), window.dunas.particleOnPage(i + 1)];
+      rope += Math.hypot(b[0] - a[0], b[1] - a[1]);
+    }
+    const doc = document.documentElement;
+    return {
+      w: innerWidth, h: innerHeight, canvas: [r.width, r.height], rope,
+      scrolls: doc.scrollHeight > innerHeight || doc.scrollWidth > innerWidth,
+      help: document.getElementById('help').textContent,
+    };
+  });
+  for (const [name, size] of [['upright', { width: 412, height: 915 }], ['sideways', { width: 915, height: 412 }]]) {
+    await page.setViewportSize(size);
+    await page.waitForTimeout(700);
+    const l = await layout();
+    const short = Math.min(l.w, l.h);
+    check(!l.scrolls, `phone ${name} (${l.w}×${l.h}): the page does not scroll`);
+    check(l.canvas[0] >= 0.99 * l.w && l.canvas[1] >= 0.8 * l.h,
+      `phone ${name}: the scene fills the screen (${l.canvas.map((v) => v.toFixed(0)).join('×')} px)`);
+    check(l.rope >= 0.2 * short,
+      `phone ${name}: the rope is drawn ${l.rope.toFixed(0)} px long, ${(100 * l.rope / short).toFixed(0)}% of the screen's short side (at least 20%)`);
+    await page.screenshot({ path: path.join(out, `phone-${name}.png`) });
+  }
+  const help = (await layout()).help;
+  check(/\btap\b/i.test(help) && !/click/i.test(help), `the phone's help says tap: "${help}"`);
+
+  // A tap lets go; the camera keeps the penguin on screen all the way down.
+  await page.setViewportSize({ width: 412, height: 915 });
+  await page.waitForTimeout(300);
+  const box = await page.locator('#view').boundingBox();
+  await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.3);
+  await page.waitForFunction(() => window.dunas.wasm.penguin() === 1, null, { timeout: 5000 });
+  let off = 0, seen = 0;
+  while (await page.evaluate(() => window.dunas.wasm.penguin()) === 1 && seen < 100) {
+    const at = await page.evaluate(() => window.dunas.penguinOnPage());
+    seen += 1;
+    if (!at || at[0] < box.x || at[0] > box.x + box.width || at[1] < box.y || at[1] > box.y + box.height) off += 1;
+    if (seen === 8) await page.screenshot({ path: path.join(out, 'phone-flight.png') });
+    await page.waitForTimeout(50);
+  }
+  check(seen > 3 && off === 0, `a tap let go; the flying penguin stayed on screen (${seen - off} of ${seen} looks)`);
+
+  // A tap once it landed starts a new game; a finger swipes across the rope between
+  // particles 3 and 4 (touch events, as a finger sends them).
+  await page.waitForFunction(() => window.dunas.wasm.penguin() === 2, null, { timeout: 20000 });
+  await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.3);
+  await page.waitForFunction(() => window.dunas.wasm.penguin() === 0 && window.dunas.wasm.time() > 1.5, null, { timeout: 10000 });
+  const cdp = await phone.newCDPSession(page);
+  const [from, to] = await swipeAcross(page, box, 120);
+  const touch = (type, t) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: t === null ? [] : [{ x: from[0] + (to[0] - from[0]) * t, y: from[1] + (to[1] - from[1]) * t }],
+  });
+  await touch('touchStart', 0);
+  await touch('touchMove', 1);
+  await touch('touchEnd', null);
+  await page.waitForTimeout(600);
+  const pieces = await page.evaluate(() => window.dunas.wasm.pieces());
+  check(pieces === 2, `a finger swipe cut the rope: ${pieces} pieces`);
+  await page.screenshot({ path: path.join(out, 'phone-cut.png') });
+  await phone.close();
+}
+
+/// A quick swipe across the rope between its particles 3 and 4, as `[from, to]` page
+/// points: one stroke (each move the browser delivers takes it a frame or more, while the
+/// rope whirls a turn a second) across where the rope's middle will be a few frames on, up
+/// to `most` px each side of it and within the canvas `box` (a touch starts on the canvas).
+async function swipeAcross(page, box, most) {
+  const look = () => page.evaluate(() => {
+    const [a, b] = [window.dunas.particleOnPage(3), window.dunas.particleOnPage(4)];
+    return [a, b, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], performance.now()];
+  });
+  const [, , before, t0] = await look();
+  await page.waitForTimeout(30);
+  const [a, b, now, t1] = await look();
+  // Where the middle will be 50 ms on, straight ahead.
+  const ahead = 50 / Math.max(t1 - t0, 1);
+  const mid = [now[0] + (now[0] - before[0]) * ahead, now[1] + (now[1] - before[1]) * ahead];
+  const along = Math.hypot(b[0] - a[0], b[1] - a[1]);
+  const dir = [-(b[1] - a[1]) / along, (b[0] - a[0]) / along];
+  let reach = most;
+  for (const sign of [-1, 1]) {
+    for (const k of [0, 1]) {
+      const [lo, hi] = k === 0 ? [box.x + 4, box.x + box.width - 4] : [box.y + 4, box.y + box.height - 4];
+      const d = sign * dir[k];
+      if (d > 0) reach = Math.min(reach, (hi - mid[k]) / d);
+      if (d < 0) reach = Math.min(reach, (lo - mid[k]) / d);
+    }
+  }
+  return [[mid[0] - dir[0] * reach, mid[1] - dir[1] * reach], [mid[0] + dir[0] * reach, mid[1] + dir[1] * reach]];
+}
+
 if (failures.length) {
   console.error(`\nthe browser test failed: ${failures.length} check(s)`);
   process.exit(1);

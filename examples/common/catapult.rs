@@ -20,10 +20,10 @@ pub const GROUND: f32 = -3.0;
 /// The penguin's mass (kg); the rope weighs 0.4 kg.
 pub const PENGUIN: f32 = 3.0;
 /// The rope's length (m).
-const ROPE_LENGTH: f32 = 1.6;
+pub const ROPE_LENGTH: f32 = 1.6;
 /// The hand whirls on a circle of this radius (m) round the origin (an inextensible rope
 /// stores nothing to fling the penguin with, so the hand does the work)...
-const HAND_RADIUS: f32 = 0.8;
+pub const HAND_RADIUS: f32 = 0.8;
 /// ...at this many turns a second (counter-clockwise), after a second of spin-up.
 const TURNS: f32 = 1.0;
 /// The game clicks by itself once the penguin has whirled this long and heads up and forward

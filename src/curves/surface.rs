@@ -353,7 +353,11 @@ pub(crate) fn natural_net<P: Point, const U: usize, const V: usize>(
         natural_controls(row, closed_u);
     }
     for i in 0..U {
-        let mut column: [P; V] = core::array::from_fn(|j| grid[j][i]);
+        // Gathered by a loop: `array::from_fn` built it aside and copied it in.
+        let mut column = [P::default(); V];
+        for (c, row) in column.iter_mut().zip(grid.iter()) {
+            *c = row[i];
+        }
         natural_controls(&mut column, closed_v);
         for (row, c) in grid.iter_mut().zip(column) {
             row[i] = c;

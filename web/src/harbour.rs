@@ -50,6 +50,11 @@ impl Harbour {
         }
     }
 
+    /// The canvas changed size (pixels).
+    pub fn resize(&mut self, width: f32, height: f32) {
+        self.size = [width.max(1.0), height.max(1.0)];
+    }
+
     /// Simulated seconds.
     pub fn time(&self) -> f32 {
         self.time

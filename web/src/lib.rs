@@ -72,13 +72,22 @@ pub extern "C" fn start(scene: u32, width: f32, height: f32) {
 }
 
 /// One 60 Hz frame: the scene steps, then draws; returns the draw list's length (numbers).
+/// The canvas changed size (pixels): the scene goes on, framed anew.
+#[unsafe(no_mangle)]
+pub extern "C" fn resize(width: f32, height: f32) {
+    with_page(|page| match &mut page.scene {
+        Scene::Catapult(game) => game.resize(width, height),
+        Scene::Harbour(harbour) => harbour.resize(width, height),
+    });
+}
+
 #[unsafe(no_mangle)]
 pub extern "C" fn frame() -> u32 {
     with_page(|page| {
         page.list.clear();
         match &mut page.scene {
             Scene::Catapult(game) => {
-                game.game.step();
+                game.step();
                 game.draw(&mut page.list);
             }
             Scene::Harbour(harbour) => {
@@ -201,7 +210,7 @@ pub extern "C" fn bench_catapult(frames: u32) -> u32 {
         if k == frames / 2 {
             game.click();
         }
-        game.game.step();
+        game.step();
         list.clear();
         game.draw(&mut list);
     }
@@ -265,6 +274,33 @@ mod tests {
                 .count()
         });
         assert_eq!(ropes, 2, "each piece is drawn as its own curve");
+    }
+
+    /// The rope's length on the canvas (pixels), along its particles.
+    fn rope_on_canvas() -> f32 {
+        (0..7)
+            .map(|i| {
+                let (dx, dy) = (
+                    particle(i + 1, 0) - particle(i, 0),
+                    particle(i + 1, 1) - particle(i, 1),
+                );
+                (dx * dx + dy * dy).sqrt()
+            })
+            .sum()
+    }
+
+    #[test]
+    fn on_a_phone_held_either_way_the_rope_is_a_fifth_of_the_short_side() {
+        start(0, 412.0, 860.0);
+        for (width, height) in [(412.0, 860.0), (915.0, 360.0), (412.0, 860.0)] {
+            resize(width, height);
+            for _ in 0..60 {
+                frame();
+            }
+            let short = f32::min(width, height);
+            let rope = rope_on_canvas();
+            assert!(rope >= 0.2 * short, "{rope} px on {width}×{height}");
+        }
     }
 
     #[test]

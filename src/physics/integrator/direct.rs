@@ -70,9 +70,9 @@ use core::cell::Cell;
 /// they converge at once to `iterations` where they do not. A topology that lists its
 /// springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
-/// with one iteration unmeasured, takes about 58 000 instructions a step, 44 400 of them
+/// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 100 000 on average, 134 000 measured and 193 000 at the defaults. Memory: the factor, the
+/// takes 98 600 on average, 132 800 measured and 190 400 at the defaults. Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -109,8 +109,8 @@ pub struct DirectSprings {
     /// `iterations` beyond it reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
     /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
     /// over the springs (a square root and a division each) after each iteration: the
-    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 134 000 instructions
-    /// a frame measured and 100 000 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
+    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 132 800 instructions
+    /// a frame measured and 98 600 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
     /// solve takes all its `iterations` and reports `converged` with a residual of 0.
     pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
@@ -403,6 +403,8 @@ impl DirectSprings {
             let sums = Cell::from_mut(&mut *r).as_slice_of_cells();
             let n = x.len().min(v.len()).min(w.len()).min(sums.len());
             model.topology.for_each_run(|a, b, count, rest, m| {
+                // Its own constant: one captured by reference is loaded again each spring.
+                let zero = P::Scalar::ZERO;
                 if !(m.stiffness > zero && a.max(b).saturating_add(count) <= n) {
                     return;
                 }
