@@ -1,6 +1,6 @@
 //! Rollback netplay's determinism on a microcontroller: the scripted scene of
 //! `common/golden.rs` (the catapult rope held by a moving hand, swinging against a ball
-//! with contacts on its drawn curve, cut at frame 60), its 120 frames' state checksums
+//! with contacts on its drawn curve, cut at frame 300 and reeled), its 600 frames' state checksums
 //! ([`MassSpring::state_hash`](dunas::MassSpring::state_hash)) folded into one and printed
 //! as `golden=`, which must equal `tests/golden.txt`'s for the format: in Q16.16 on a
 //! Cortex-M0, in f32 on a Cortex-M4F, as on the host and in a `.wasm` under node.

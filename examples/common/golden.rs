@@ -1,8 +1,9 @@
 //! The scripted scene whose state checksums ([`MassSpring::state_hash`]) every platform
 //! must agree on, frame by frame, for rollback netplay: the catapult rope (8 particles,
 //! 70 units, a bob of 2) held by a hand that moves every frame (the game's input), swinging
-//! against a ball with contacts on its drawn Catmull-Rom curve, cut across by a swipe at
-//! frame 60. [`hashes`] folds its 120 frames' checksums into one; `tests/golden.txt` holds
+//! against a ball with contacts on its drawn Catmull-Rom curve, reeled in to 45 units and
+//! paid out again, cut across by a swipe at frame 300, and what the hand still holds reeled
+//! in to 30. [`hashes`] folds its 600 frames' checksums into one; `tests/golden.txt` holds
 //! the value in `Q16` and `f32`, which the host (`tests/suite/rollback.rs`), the
 //! Cortex-M0 and M4F (`examples/mcu_peg.rs`) and a `.wasm` under node (`examples/golden.rs`)
 //! must reproduce.
@@ -14,9 +15,9 @@ use dunas::breaking::Piece;
 use dunas::prelude::*;
 
 /// Frames the scene runs.
-pub const FRAMES: u32 = 120;
+pub const FRAMES: u32 = 600;
 /// The frame whose swipe cuts the rope.
-pub const CUT_AT: u32 = 60;
+pub const CUT_AT: u32 = 300;
 
 /// The rope, its ball, its drawn curve and pieces, and the frames so far.
 #[derive(Clone)]
@@ -55,14 +56,29 @@ impl<S: Scalar> Scene<S> {
         })
     }
 
-    /// One frame: the hand's input (a zigzag 20 units wide, 40 frames a stroke), the swipe
-    /// at [`CUT_AT`], the step with the ball's contacts, the drawing.
+    /// One frame with the scripted input ([`input`]).
     pub fn advance(&mut self) -> Result<(), Error> {
+        self.advance_with(input(self.frame))
+    }
+
+    /// One frame: the hand to `hand_x` (the game's input), the reel (in, out, and in again
+    /// after the cut), the swipe at [`CUT_AT`], the step with the ball's contacts, the
+    /// drawing.
+    pub fn advance_with(&mut self, hand_x: i8) -> Result<(), Error> {
         let px = |v: i16| S::from_i16(v);
         let dt = S::ratio(1, 60);
-        let stroke = (self.frame % 80) as i16;
-        let x = if stroke < 40 { stroke } else { 80 - stroke } / 2 - 10;
-        self.rope.move_pinned(0, Vec2::new(px(x), px(0)), dt)?;
+        self.rope
+            .move_pinned(0, Vec2::new(px(i16::from(hand_x)), px(0)), dt)?;
+        // (target, units a second)
+        let reel = match self.frame {
+            30..=160 => Some((45, 12)),
+            180..=280 => Some((70, 15)),
+            400..=500 => Some((30, 20)),
+            _ => None,
+        };
+        if let Some((target, speed)) = reel {
+            self.rope.reel(px(target), px(speed), dt)?;
+        }
         if self.frame == CUT_AT {
             let swipe = (Vec2::new(px(-60), px(-20)), Vec2::new(px(60), px(-40)));
             let drawn = &self.pieces[..self.drawn];
@@ -76,6 +92,13 @@ impl<S: Scalar> Scene<S> {
         self.frame += 1;
         Ok(())
     }
+}
+
+/// The hand's x at `frame`, the scene's scripted input: a zigzag 20 units wide, 40 frames
+/// a stroke.
+pub fn input(frame: u32) -> i8 {
+    let stroke = (frame % 80) as i8;
+    (if stroke < 40 { stroke } else { 80 - stroke }) / 2 - 10
 }
 
 /// Every frame's [`MassSpring::state_hash`](dunas::MassSpring::state_hash), folded into one.

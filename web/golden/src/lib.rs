@@ -1,5 +1,5 @@
 //! The scripted scene of `examples/common/golden.rs` in a `.wasm` that node runs directly
-//! (`web/golden.mjs`): its 120 frames' state checksums folded into one, in Q16.16 and in
+//! (`web/golden.mjs`): its 600 frames' state checksums folded into one, in Q16.16 and in
 //! f32, which must equal `tests/golden.txt`'s, as on the host and the microcontrollers.
 //!
 //! `cargo build --release -p dunas-golden --target wasm32-unknown-unknown`, then
