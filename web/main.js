@@ -5,7 +5,10 @@
 
 // Record styles: the values of `Style` in web/src/draw_list.rs.
 const SNOW = 0, ROPE = 1, PARTICLES = 2, HAND = 3, PENGUIN = 4, TRAIL = 5, TARGET = 6,
-  SEA = 7, TRIANGLE = 8, SPAR = 9;
+  SEA = 7, TRIANGLE = 8, SPAR = 9, HOOK = 10, ROOF = 11;
+// The scenes, in `start`'s numbering.
+const CATAPULT = 0, BOATS = 1, GRAPPLE = 2;
+const BUTTONS = ['catapult', 'boats', 'grapple'];
 const STEP_MS = 1000 / 60;
 // A touch screen taps where a mouse clicks.
 const TOUCH = matchMedia('(pointer: coarse)').matches || navigator.maxTouchPoints > 0;
@@ -13,6 +16,7 @@ const CLICK = TOUCH ? 'Tap' : 'Click';
 const HELP = [
   `${CLICK} to let go of the penguin, swipe across the rope to cut it; ${CLICK.toLowerCase()} again once it lands.`,
   `${CLICK} to send a gust through the fleet.`,
+  `${CLICK} a green hook to throw the rope to it; ${TOUCH ? 'hold a finger' : 'hold the button'} anywhere else to reel in and climb.`,
 ];
 
 const canvas = document.getElementById('view');
@@ -49,9 +53,8 @@ function start(which) {
   wasm.start(which, canvas.width, canvas.height);
   length = 0;
   costs.length = 0;
-  document.getElementById('catapult').setAttribute('aria-pressed', String(which === 0));
-  document.getElementById('boats').setAttribute('aria-pressed', String(which !== 0));
-  document.getElementById('help').textContent = HELP[which === 0 ? 0 : 1];
+  BUTTONS.forEach((id, i) => document.getElementById(id).setAttribute('aria-pressed', String(which === i)));
+  document.getElementById('help').textContent = HELP[which];
 }
 
 function frame() {
@@ -148,9 +151,19 @@ function penguin(x, y, r) {
   }
 }
 
+// The cave: dusk light through its mouth, and far rock.
+function cave() {
+  const g = ctx.createLinearGradient(0, 0, 0, canvas.height);
+  g.addColorStop(0, '#2a3446');
+  g.addColorStop(1, '#6a7b94');
+  ctx.fillStyle = g;
+  ctx.fillRect(0, 0, canvas.width, canvas.height);
+}
+
 function draw() {
   const all = records();
-  if (scene === 0) winterSky();
+  if (scene === CATAPULT) winterSky();
+  if (scene === GRAPPLE) cave();
   for (const [style, p] of all) {
     switch (style) {
       case SNOW:
@@ -231,6 +244,23 @@ function draw() {
         ctx.lineWidth = 0.6;
         ctx.stroke();
         break;
+      case HOOK: {
+        const [x, y, r, reach] = p;
+        ctx.strokeStyle = reach ? '#46c35a' : '#8a8f96';
+        ctx.lineWidth = Math.max(2 * unit, r * 0.45);
+        ctx.beginPath();
+        ctx.arc(x, y, r, 0, 2 * Math.PI);
+        ctx.stroke();
+        break;
+      }
+      case ROOF:
+        ctx.fillStyle = '#3b3431';
+        ctx.beginPath();
+        ctx.moveTo(p[0], 0);
+        for (let i = 0; i + 1 < p.length; i += 2) ctx.lineTo(p[i], p[i + 1]);
+        ctx.lineTo(p[p.length - 2], 0);
+        ctx.fill();
+        break;
       case SPAR:
         ctx.strokeStyle = '#5a4632';
         ctx.lineWidth = p[4];
@@ -246,8 +276,13 @@ const mean = (v) => v.reduce((a, b) => a + b, 0) / Math.max(v.length, 1);
 function report() {
   const t = wasm.time().toFixed(1);
   const cost = `frame ${mean(costs).toFixed(3)} ms (step + draw list, mean of the last ${costs.length})`;
-  if (scene !== 0) {
+  if (scene === BOATS) {
     status.textContent = `t = ${t} s · ${cost} · 9 sails of 8×8 particles, one solve a frame, drawn 12×12`;
+    return;
+  }
+  if (scene === GRAPPLE) {
+    const won = wasm.hook() === 7 && wasm.rope_length() <= 2 ? ' · on the last hook!' : '';
+    status.textContent = `t = ${t} s · hook ${wasm.hook() + 1} of 8 · rope ${wasm.rope_length().toFixed(2)} m · ${cost} · 8 particles, links within ${(wasm.largest_off() * 100).toFixed(3)}% of the rope's length${won}`;
     return;
   }
   const states = ['whirling', 'flying', 'landed'];
@@ -284,6 +319,7 @@ let press = null;
 canvas.addEventListener('pointerdown', (e) => {
   press = { from: at(e), last: at(e), swiped: false, cut: false };
   canvas.setPointerCapture(e.pointerId);
+  wasm.press(...press.from);
 });
 canvas.addEventListener('pointermove', (e) => {
   if (!press) return;
@@ -295,14 +331,26 @@ canvas.addEventListener('pointermove', (e) => {
 });
 canvas.addEventListener('pointerup', () => {
   if (press && !press.swiped) wasm.click();
+  wasm.lift();
+  press = null;
+});
+canvas.addEventListener('pointercancel', () => {
+  wasm.lift();
   press = null;
 });
 document.getElementById('catapult').addEventListener('click', () => start(0));
 document.getElementById('boats').addEventListener('click', () => start(1));
+document.getElementById('grapple').addEventListener('click', () => start(2));
 
 window.dunas = {
   wasm,
   scene: () => scene,
+  // Hook `i` of the grappling hook in page coordinates.
+  hookOnPage(i) {
+    const r = canvas.getBoundingClientRect();
+    return [r.left + wasm.hook_pixel(i, 0) * r.width / canvas.width,
+      r.top + wasm.hook_pixel(i, 1) * r.height / canvas.height];
+  },
   // The rope's particle `i` in page coordinates (for the test's swipe).
   particleOnPage(i) {
     const r = canvas.getBoundingClientRect();

@@ -26,6 +26,10 @@ pub enum Style {
     Triangle = 8,
     /// `[x0, y0, x1, y1, width]`: a mast, a boom or a gaff.
     Spar = 9,
+    /// `[x, y, r, reach]`: a hook in the roof; `reach` 1 when a throw would catch it now.
+    Hook = 10,
+    /// A polyline `[x, y, ...]`: the cave's roof, filled above.
+    Roof = 11,
 }
 
 /// A frame's records; kept between frames so that drawing allocates nothing once warm.

@@ -14,9 +14,12 @@
 mod boats;
 #[path = "../../examples/common/catapult.rs"]
 mod catapult;
+#[path = "../../examples/common/grapple.rs"]
+mod grapple;
 
 pub mod catapult_page;
 pub mod draw_list;
+pub mod grapple_page;
 pub mod harbour;
 pub mod view;
 
@@ -25,6 +28,7 @@ use std::cell::RefCell;
 use catapult::Penguin;
 use catapult_page::CatapultPage;
 use draw_list::DrawList;
+use grapple_page::GrapplePage;
 use harbour::Harbour;
 
 /// Boats in the boat scene.
@@ -34,6 +38,7 @@ const BOATS: usize = 9;
 enum Scene {
     Catapult(Box<CatapultPage>),
     Harbour(Box<Harbour>),
+    Grapple(Box<GrapplePage>),
 }
 
 struct Page {
@@ -55,7 +60,7 @@ fn with_page<T>(f: impl FnOnce(&mut Page) -> T) -> T {
 fn with_catapult<T: Default>(f: impl FnOnce(&CatapultPage) -> T) -> T {
     with_page(|page| match &page.scene {
         Scene::Catapult(game) => f(game),
-        Scene::Harbour(_) => T::default(),
+        _ => T::default(),
     })
 }
 
@@ -65,7 +70,8 @@ pub extern "C" fn start(scene: u32, width: f32, height: f32) {
     with_page(|page| {
         page.scene = match scene {
             0 => Scene::Catapult(Box::new(CatapultPage::new(width, height))),
-            _ => Scene::Harbour(Box::new(Harbour::new(BOATS, width, height))),
+            1 => Scene::Harbour(Box::new(Harbour::new(BOATS, width, height))),
+            _ => Scene::Grapple(Box::new(GrapplePage::new(width, height))),
         };
         page.list.clear();
     });
@@ -78,6 +84,7 @@ pub extern "C" fn resize(width: f32, height: f32) {
     with_page(|page| match &mut page.scene {
         Scene::Catapult(game) => game.resize(width, height),
         Scene::Harbour(harbour) => harbour.resize(width, height),
+        Scene::Grapple(game) => game.resize(width, height),
     });
 }
 
@@ -93,6 +100,10 @@ pub extern "C" fn frame() -> u32 {
             Scene::Harbour(harbour) => {
                 harbour.step();
                 harbour.draw(&mut page.list);
+            }
+            Scene::Grapple(game) => {
+                game.step();
+                game.draw(&mut page.list);
             }
         }
         page.list.numbers().len() as u32
@@ -111,7 +122,67 @@ pub extern "C" fn click() {
     with_page(|page| match &mut page.scene {
         Scene::Catapult(game) => game.click(),
         Scene::Harbour(harbour) => harbour.gust(),
+        Scene::Grapple(_) => {}
     });
+}
+
+/// A press at a canvas pixel (the grappling hook: a throw to a hook there, or the reel
+/// until [`lift`]).
+#[unsafe(no_mangle)]
+pub extern "C" fn press(x: f32, y: f32) {
+    with_page(|page| {
+        if let Scene::Grapple(game) = &mut page.scene {
+            game.press(x, y);
+        }
+    });
+}
+
+/// The press ended.
+#[unsafe(no_mangle)]
+pub extern "C" fn lift() {
+    with_page(|page| {
+        if let Scene::Grapple(game) = &mut page.scene {
+            game.lift();
+        }
+    });
+}
+
+/// The grappling hook: the hook the rope hangs from (-1 in another scene).
+#[unsafe(no_mangle)]
+pub extern "C" fn hook() -> i32 {
+    with_page(|page| match &page.scene {
+        Scene::Grapple(game) => game.game.hook as i32,
+        _ => -1,
+    })
+}
+
+/// The grappling hook: the rope's length (m), and the largest gap so far between its chain
+/// and that length (0.01 is 1%); NaN in another scene.
+#[unsafe(no_mangle)]
+pub extern "C" fn rope_length() -> f32 {
+    with_page(|page| match &page.scene {
+        Scene::Grapple(game) => game.game.rope.length(),
+        _ => f32::NAN,
+    })
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn largest_off() -> f32 {
+    with_page(|page| match &page.scene {
+        Scene::Grapple(game) => game.game.largest_off,
+        _ => f32::NAN,
+    })
+}
+
+/// The grappling hook: hook `i`'s canvas pixel on `axis` (0 x, 1 y); NaN otherwise.
+#[unsafe(no_mangle)]
+pub extern "C" fn hook_pixel(i: u32, axis: u32) -> f32 {
+    with_page(|page| match &page.scene {
+        Scene::Grapple(game) => grapple::HOOKS
+            .get(i as usize)
+            .map_or(f32::NAN, |&h| game.view.pixel(h)[(axis as usize).min(1)]),
+        _ => f32::NAN,
+    })
 }
 
 /// A stroke of a swipe from `(x0, y0)` to `(x1, y1)`: cuts the catapult's rope where it
@@ -120,7 +191,7 @@ pub extern "C" fn click() {
 pub extern "C" fn swipe(x0: f32, y0: f32, x1: f32, y1: f32) -> u32 {
     with_page(|page| match &mut page.scene {
         Scene::Catapult(game) => u32::from(game.swipe([x0, y0], [x1, y1])),
-        Scene::Harbour(_) => 0,
+        _ => 0,
     })
 }
 
@@ -130,6 +201,7 @@ pub extern "C" fn time() -> f32 {
     with_page(|page| match &page.scene {
         Scene::Catapult(game) => game.game.time(),
         Scene::Harbour(harbour) => harbour.time(),
+        Scene::Grapple(game) => game.game.time(),
     })
 }
 
@@ -151,7 +223,7 @@ pub extern "C" fn landed_x() -> f32 {
             Penguin::Landed { x, .. } => x,
             _ => f32::NAN,
         },
-        Scene::Harbour(_) => f32::NAN,
+        _ => f32::NAN,
     })
 }
 
@@ -160,7 +232,7 @@ pub extern "C" fn landed_x() -> f32 {
 pub extern "C" fn arc_x() -> f32 {
     with_page(|page| match &page.scene {
         Scene::Catapult(game) => game.arc_x().unwrap_or(f32::NAN),
-        Scene::Harbour(_) => f32::NAN,
+        _ => f32::NAN,
     })
 }
 
@@ -182,6 +254,7 @@ pub extern "C" fn slow_frames() -> u32 {
     with_page(|page| match &page.scene {
         Scene::Catapult(game) => game.game.slow_frames,
         Scene::Harbour(harbour) => harbour.slow_frames,
+        Scene::Grapple(game) => game.game.slow_frames,
     })
 }
 
@@ -196,7 +269,7 @@ pub extern "C" fn particle(i: u32, axis: u32) -> f32 {
             .positions()
             .get(i as usize)
             .map_or(f32::NAN, |&p| game.view.pixel(p)[(axis as usize).min(1)]),
-        Scene::Harbour(_) => f32::NAN,
+        _ => f32::NAN,
     })
 }
 
@@ -301,6 +374,38 @@ mod tests {
             let rope = rope_on_canvas();
             assert!(rope >= 0.2 * short, "{rope} px on {width}×{height}");
         }
+    }
+
+    /// The grappling hook on the page: a press away from the hooks reels in while it lasts;
+    /// a press on the next hook, once it is in reach, throws the rope there; the chain
+    /// keeps the rope's length within 0.5% throughout.
+    #[test]
+    fn a_press_reels_in_and_a_tap_on_a_hook_in_reach_throws_to_it() {
+        start(2, 412.0, 860.0);
+        for _ in 0..30 {
+            frame();
+        }
+        let before = rope_length();
+        press(5.0, 850.0);
+        for _ in 0..60 {
+            frame();
+        }
+        lift();
+        let reeled = rope_length();
+        assert!(reeled < before - 3.0, "{before} m, then {reeled} m");
+        let mut frames = 0;
+        while hook() != 1 && frames < 600 {
+            press(hook_pixel(1, 0), hook_pixel(1, 1));
+            lift();
+            frame();
+            frames += 1;
+        }
+        assert_eq!(hook(), 1, "the rope caught the second hook");
+        for _ in 0..120 {
+            frame();
+        }
+        assert_eq!(slow_frames(), 0);
+        assert!(largest_off() <= 5e-3, "{}", largest_off());
     }
 
     #[test]
