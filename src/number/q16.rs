@@ -24,9 +24,13 @@ use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 use fixed::types::I16F16;
 
 #[cfg(not(target_pointer_width = "64"))]
-use super::q16_bits::{div_long, mul_halves};
+use super::q16_bits::div_long;
 #[cfg(target_pointer_width = "64")]
-use super::q16_bits::{div_wide, mul_wide};
+use super::q16_bits::div_wide;
+#[cfg(not(dunas_wide_mul))]
+use super::q16_bits::mul_halves;
+#[cfg(dunas_wide_mul)]
+use super::q16_bits::mul_wide;
 use super::q16_bits::{inv_sqrt_bits, isqrt, reciprocal_bits, root_and_inverse, square};
 use crate::Scalar;
 
@@ -180,11 +184,11 @@ impl Mul for Q16 {
     /// one, 32-bit halves elsewhere; the results are identical bit for bit.
     #[inline]
     fn mul(self, rhs: Q16) -> Q16 {
-        #[cfg(target_pointer_width = "64")]
+        #[cfg(dunas_wide_mul)]
         {
             mul_wide(self.to_bits(), rhs.to_bits())
         }
-        #[cfg(not(target_pointer_width = "64"))]
+        #[cfg(not(dunas_wide_mul))]
         {
             mul_halves(self.to_bits(), rhs.to_bits())
         }

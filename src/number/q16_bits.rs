@@ -5,7 +5,7 @@
 use super::q16::Q16;
 
 /// `round(a·b / 2¹⁶)` (ties up), saturated: the exact 64-bit form.
-#[cfg(any(test, target_pointer_width = "64"))]
+#[cfg(any(test, dunas_wide_mul))]
 #[inline]
 pub(super) fn mul_wide(a: i32, b: i32) -> Q16 {
     let wide = a as i64 * b as i64;
@@ -19,7 +19,7 @@ pub(super) fn mul_wide(a: i32, b: i32) -> Q16 {
 /// cannot leave 32 bits and is taken there; otherwise in 64 bits, saturated as
 /// [`mul_wide`] does. Bit-identical to the 64-bit form (tested on edge cases and 600 000
 /// random pairs).
-#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cfg(any(test, not(dunas_wide_mul)))]
 #[inline]
 pub(super) fn mul_halves(a: i32, b: i32) -> Q16 {
     if (b >> 15) == (b >> 31) {
@@ -50,7 +50,7 @@ pub(super) fn mul_halves(a: i32, b: i32) -> Q16 {
 /// [`mul_halves`] past the 32-bit sum: in 64-bit adds only (cheap everywhere), rounded and
 /// saturated as [`mul_wide`] does. Out of line: it is rare, and inlined it would cost
 /// flash at every product.
-#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cfg(any(test, not(dunas_wide_mul)))]
 #[cold]
 #[inline(never)]
 fn mul_halves_wide(ah: i32, al: u32, bh: i32, bl: u32) -> Q16 {
