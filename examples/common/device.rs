@@ -37,6 +37,9 @@ pub struct Report {
     pub cut_frame: Option<u32>,
     /// What one pin change cost, in instructions, where the example meters it.
     pub pin_instructions: Option<u32>,
+    /// A frame that reels the rope against the same frame that does not, in thousandths,
+    /// where the example meters it.
+    pub reel_permille: Option<u32>,
     /// The costliest frame but one the example singles out (the cut's), where it does.
     pub other_frame_instructions: Option<u32>,
     /// The rope's largest stretch over the run, in thousandths, where the example measures it.
@@ -256,6 +259,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         belly_mm: None,
         cut_frame: None,
         pin_instructions: None,
+        reel_permille: None,
         other_frame_instructions: None,
         stretch_permille: None,
         area_permille: None,
@@ -610,6 +614,9 @@ mod board {
                 }
                 if let Some(n) = r.pin_instructions {
                     put_number(b"pin_instructions", n, false);
+                }
+                if let Some(n) = r.reel_permille {
+                    put_number(b"reel_permille", n, false);
                 }
                 if let Some(n) = r.stretch_permille {
                     put_number(b"stretch_permille", n, false);

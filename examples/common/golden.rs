@@ -10,6 +10,9 @@
 //!
 //! [`MassSpring::state_hash`]: dunas::MassSpring::state_hash
 
+// Each crate that shares it uses part of it.
+#![allow(dead_code)]
+
 use dunas::StateHash;
 use dunas::breaking::Piece;
 use dunas::prelude::*;
@@ -65,12 +68,22 @@ impl<S: Scalar> Scene<S> {
     /// after the cut), the swipe at [`CUT_AT`], the step with the ball's contacts, the
     /// drawing.
     pub fn advance_with(&mut self, hand_x: i8) -> Result<(), Error> {
+        self.play(hand_x, true)
+    }
+
+    /// [`advance_with`](Self::advance_with) without the reel (to meter what reeling costs).
+    pub fn advance_plain(&mut self, hand_x: i8) -> Result<(), Error> {
+        self.play(hand_x, false)
+    }
+
+    fn play(&mut self, hand_x: i8, reels: bool) -> Result<(), Error> {
         let px = |v: i16| S::from_i16(v);
         let dt = S::ratio(1, 60);
         self.rope
             .move_pinned(0, Vec2::new(px(i16::from(hand_x)), px(0)), dt)?;
         // (target, units a second)
         let reel = match self.frame {
+            _ if !reels => None,
             30..=160 => Some((45, 12)),
             180..=280 => Some((70, 15)),
             400..=500 => Some((30, 20)),

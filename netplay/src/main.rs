@@ -10,9 +10,7 @@
 //! folded checksums, which in Q16.16 and f32 equal `tests/golden.txt`'s (and so the
 //! Cortex-M0's, the M4F's and wasm32's); `cargo test -p dunas-netplay` checks all three.
 
-// Its `hashes` (the scene played without GGRS) is the tests' reference only.
 #[path = "../../examples/common/golden.rs"]
-#[allow(dead_code)]
 mod golden;
 
 use dunas::{Q16, Scalar, StateHash};
