@@ -79,8 +79,19 @@ impl<const N: usize> Hanging<N> {
     /// call it before `world.step()` with the same `dt`.
     ///
     /// # Errors
-    /// The rope's step's ([`MassSpring::step`]); the body is then left untouched.
+    /// The rope's step's ([`MassSpring::step`]: a negative or non-finite `dt` is
+    /// [`Error::InvalidParameter`]); the rope and the body are then left as they were.
     pub fn step(&mut self, world: &mut PhysicsWorld, dt: f32) -> Result<StepInfo<f32>, Error> {
+        let before = self.rope.clone();
+        let stepped = self.pull(world, dt);
+        if stepped.is_err() {
+            self.rope = before;
+        }
+        stepped
+    }
+
+    /// [`step`](Self::step), the rope changed even where it fails.
+    fn pull(&mut self, world: &mut PhysicsWorld, dt: f32) -> Result<StepInfo<f32>, Error> {
         let end = N - 1;
         let body = &world.bodies[self.body];
         let at = body.position().transform_point(self.anchor);

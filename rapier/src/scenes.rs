@@ -316,6 +316,36 @@ mod tests {
         assert!(m.lowest >= 0.0, "{m:?}");
     }
 
+    /// A refused step (a bad `dt`) is an `InvalidParameter` and leaves the rope and the
+    /// body as they were.
+    #[test]
+    fn a_refused_step_changes_nothing() {
+        let mut scene = WreckingBall::new(true);
+        for _ in 0..30 {
+            scene.step();
+        }
+        let rope = scene.rope.as_mut().expect("dunas's rope");
+        let (positions, velocities) = (
+            rope.rope.positions().to_vec(),
+            rope.rope.velocities().to_vec(),
+        );
+        let ball = (
+            scene.world.bodies[scene.ball].translation(),
+            scene.world.bodies[scene.ball].linvel(),
+        );
+        for dt in [f32::NAN, -STEP, f32::INFINITY] {
+            let refused = rope.step(&mut scene.world, dt);
+            assert!(
+                matches!(refused, Err(dunas::Error::InvalidParameter { .. })),
+                "{refused:?}"
+            );
+            assert_eq!(rope.rope.positions(), &positions[..]);
+            assert_eq!(rope.rope.velocities(), &velocities[..]);
+            let body = &scene.world.bodies[scene.ball];
+            assert_eq!((body.translation(), body.linvel()), ball);
+        }
+    }
+
     /// The wrecking ball knocks the wall down; with restitution 0 the total energy never
     /// rises above the start's by more than 1% of the drop's, the rope keeps its length
     /// within 0.5%, the ball stays above the ground and no body goes half a box deep into
