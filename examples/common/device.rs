@@ -346,6 +346,7 @@ mod board {
     #[cfg(target_arch = "riscv32")]
     mod arch {
         use core::arch::asm;
+        use core::sync::atomic::{AtomicUsize, Ordering};
 
         use super::Meter;
 
@@ -459,11 +460,18 @@ mod board {
             out
         }
 
-        /// Writes to the host's standard output (`SYS_OPEN` of `:tt` for writing, then
+        /// The host's standard output once opened (`usize::MAX` before).
+        static STDOUT: AtomicUsize = AtomicUsize::new(usize::MAX);
+
+        /// Writes to the host's standard output (`SYS_OPEN` of `:tt` for writing, once, then
         /// `SYS_WRITE`; `SYS_WRITEC` would go to QEMU's console, its standard error).
         pub fn put(bytes: &[u8]) {
-            let name = b":tt\0";
-            let handle = semihost(0x01, [name.as_ptr() as usize, 4, 3].as_ptr() as usize);
+            let mut handle = STDOUT.load(Ordering::Relaxed);
+            if handle == usize::MAX {
+                let name = b":tt\0";
+                handle = semihost(0x01, [name.as_ptr() as usize, 4, 3].as_ptr() as usize);
+                STDOUT.store(handle, Ordering::Relaxed);
+            }
             semihost(
                 0x05,
                 [handle, bytes.as_ptr() as usize, bytes.len()].as_ptr() as usize,
