@@ -616,34 +616,13 @@ pub fn run(run: &mut Run) {
     );
 }
 
-/// How far below its pins a 1 m, 1 kg, 8×8 cloth held level by two corners of one edge
-/// hangs after 10 s at `DirectSprings`' defaults (f64; springs of axial stiffness `ea` N,
-/// bending a tenth, a drag of 2/s; statics: 1.00 m).
+/// How far below its pins the stiff cloth (`tests/common`'s `hung_cloth`: 1 m, 1 kg,
+/// 8×8, held level by two corners, axial stiffness `ea` N, a drag of 2/s) hangs after 10 s
+/// at `DirectSprings`' defaults (statics: 1.00 m).
 fn cloth_drop(ea: f64) -> f64 {
-    let settings = Settings {
-        gravity: Vec3::new(0.0, -9.81, 0.0),
-        damping: 2.0,
-        ..Settings::default()
-    }
-    .with_integrator(DirectSprings::default());
-    let k = ea * 7.0;
-    let materials = [k, k, 0.1 * k].map(|k| Material {
-        stiffness: k,
-        damping: 0.0,
-    });
-    let (origin, du, dv) = (
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(1.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 1.0),
-    );
-    let Ok(mut cloth) = Cloth::<Vec3<f64>, 8, 8, DirectSprings>::rectangle(
-        origin, du, dv, 1.0, materials, settings,
-    ) else {
+    let Ok(mut cloth) = crate::common::hung_cloth(ea, DirectSprings::default()) else {
         return f64::NAN;
     };
-    if cloth.set_inv_mass(0, 0.0).is_err() || cloth.set_inv_mass(7, 0.0).is_err() {
-        return f64::NAN;
-    }
     for _ in 0..600 {
         if cloth.step(1.0 / 60.0).is_err() {
             return f64::NAN;

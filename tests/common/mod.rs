@@ -4,11 +4,11 @@
 use dunas::Settings;
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::integrator::AnyIntegrator;
+use dunas::integrator::{AnyIntegrator, DirectSprings};
 use dunas::shape::Line;
 use dunas::spring::{Material, Springs};
 use dunas::surface::SurfaceTable;
-use dunas::{Accuracy, Bezier, Cloth, MassSpring, Point, Scalar, Smoothing, Vec2, Vec3};
+use dunas::{Accuracy, Bezier, Cloth, Error, MassSpring, Point, Scalar, Smoothing, Vec2, Vec3};
 
 /// Control points on a grid of `1 / DENOM`: exactly representable in f32, f64 and Q16.
 pub const DENOM: i64 = 16;
@@ -681,4 +681,38 @@ fn crosses((a, b): (Vec3<f64>, Vec3<f64>), t: [Vec3<f64>; 3]) -> bool {
     let x = a + (b - a) * (da / (da - db));
     let inside = |p: Vec3<f64>, q: Vec3<f64>| (q - p).cross(x - p).dot(normal) >= 0.0;
     inside(t[0], t[1]) && inside(t[1], t[2]) && inside(t[2], t[0])
+}
+
+/// The stiff cloth `DirectSprings`' locking is measured on (`tests/suite/converge.rs`, the
+/// evaluation's `evaluate/src/chains.rs`):
+/// a 1 m, 1 kg, 8×8 cloth held level by two corners of one edge, its springs of axial
+/// stiffness `ea` (N; bending a tenth of it), under a drag of 2/s, stepped by `solver` (f64;
+/// statics: it hangs 1.00 m below its pins).
+///
+/// # Errors
+/// The cloth's ([`Cloth::rectangle`], `set_inv_mass`): a stiffness that is not positive.
+pub fn hung_cloth(
+    ea: f64,
+    solver: DirectSprings,
+) -> Result<Cloth<Vec3<f64>, 8, 8, DirectSprings>, Error> {
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping: 2.0,
+        ..Settings::default()
+    }
+    .with_integrator(solver);
+    let k = ea * 7.0;
+    let materials = [k, k, 0.1 * k].map(|k| Material {
+        stiffness: k,
+        damping: 0.0,
+    });
+    let (origin, du, dv) = (
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+    );
+    let mut cloth = Cloth::rectangle(origin, du, dv, 1.0, materials, settings)?;
+    cloth.set_inv_mass(0, 0.0)?;
+    cloth.set_inv_mass(7, 0.0)?;
+    Ok(cloth)
 }

@@ -13,29 +13,10 @@ fn tolerance() -> f64 {
     f64::from(n) / f64::from(d)
 }
 
-/// A 1 m, 1 kg, 8×8 cloth held by two corners of one edge, level at the start, its springs
-/// of axial stiffness `ea` (N), under a drag of 2/s.
+/// The stiff cloth (`tests/common`'s `hung_cloth`): 1 m, 1 kg, 8×8, held level by two
+/// corners, axial stiffness `ea` N, a drag of 2/s.
 fn cloth(ea: f64, solver: DirectSprings) -> Cloth<Vec3<f64>, 8, 8, DirectSprings> {
-    let settings = Settings {
-        gravity: Vec3::new(0.0, -9.81, 0.0),
-        damping: 2.0,
-        ..Settings::default()
-    }
-    .with_integrator(solver);
-    let k = ea * 7.0;
-    let materials = [k, k, 0.1 * k].map(|k| Material {
-        stiffness: k,
-        damping: 0.0,
-    });
-    let (origin, du, dv) = (
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(1.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 1.0),
-    );
-    let mut cloth = Cloth::rectangle(origin, du, dv, 1.0, materials, settings).unwrap();
-    cloth.set_inv_mass(0, 0.0).unwrap();
-    cloth.set_inv_mass(7, 0.0).unwrap();
-    cloth
+    crate::common::hung_cloth(ea, solver).unwrap()
 }
 
 /// A measured `DirectSprings` solve that reports `converged` ends within twice the
