@@ -298,6 +298,9 @@ let last = performance.now(), owed = 0;
 function tick(now) {
   owed += Math.min(now - last, 100);
   last = now;
+  // Paused (`window.dunas.paused`, for the browser test), the scene holds still and the
+  // pointer still acts on it.
+  if (window.dunas.paused) owed = 0;
   for (let n = 0; owed >= STEP_MS && n < 4; n++) {
     frame();
     owed -= STEP_MS;
@@ -344,6 +347,7 @@ document.getElementById('grapple').addEventListener('click', () => start(2));
 
 window.dunas = {
   wasm,
+  paused: false,
   scene: () => scene,
   // Hook `i` of the grappling hook in page coordinates.
   hookOnPage(i) {

@@ -79,11 +79,14 @@ try {
   // A new game (a click once landed), then a swipe across the rope between particles 3 and 4.
   await page.mouse.click(box.x + box.width * 0.7, box.y + box.height * 0.3);
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 0 && window.dunas.wasm.time() > 1.0);
+  // Paused, so that the stroke meets the rope where it was seen however slow the browser.
+  await page.evaluate(() => { window.dunas.paused = true; });
   const [from, to] = await swipeAcross(page, box, 200);
   await page.mouse.move(...from);
   await page.mouse.down();
-  await page.mouse.move(...to);
+  await page.mouse.move(...to, { steps: 4 });
   await page.mouse.up();
+  await page.evaluate(() => { window.dunas.paused = false; });
   await page.waitForTimeout(600);
   const { pieces, drawn } = await page.evaluate(() => ({
     pieces: window.dunas.wasm.pieces(),
@@ -209,15 +212,21 @@ async function phoneChecks(browser, origin, errors, outside) {
   }, null, { timeout: 5000 });
   await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.3);
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 1, null, { timeout: 5000 });
-  let off = 0, seen = 0;
-  while (await page.evaluate(() => window.dunas.wasm.penguin()) === 1 && seen < 100) {
-    const at = await page.evaluate(() => window.dunas.penguinOnPage());
-    seen += 1;
-    if (!at || at[0] < box.x || at[0] > box.x + box.width || at[1] < box.y || at[1] > box.y + box.height) off += 1;
-    if (seen === 8) await page.screenshot({ path: path.join(out, 'phone-flight.png') });
-    await page.waitForTimeout(50);
-  }
-  check(seen > 3 && off === 0, `a tap let go; the flying penguin stayed on screen (${seen - off} of ${seen} looks)`);
+  // Every frame the page draws until the penguin lands, looked at in the page itself.
+  const looks = await page.evaluate(() => new Promise((resolve) => {
+    const seen = [];
+    const look = () => {
+      if (window.dunas.wasm.penguin() !== 1) return resolve(seen);
+      seen.push(window.dunas.penguinOnPage());
+      requestAnimationFrame(look);
+    };
+    look();
+  }));
+  const seen = looks.length;
+  const off = looks.filter((at) => !at || at[0] < box.x || at[0] > box.x + box.width
+    || at[1] < box.y || at[1] > box.y + box.height).length;
+  check(seen > 3 && off === 0, `a tap let go; the flying penguin stayed on screen (${seen - off} of ${seen} frames)`);
+  await page.screenshot({ path: path.join(out, 'phone-landed.png') });
 
   // A tap once it landed starts a new game; a finger swipes across the rope between
   // particles 3 and 4 (touch events, as a finger sends them).
@@ -225,13 +234,15 @@ async function phoneChecks(browser, origin, errors, outside) {
   await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.3);
   await page.waitForFunction(() => window.dunas.wasm.penguin() === 0 && window.dunas.wasm.time() > 1.5, null, { timeout: 10000 });
   const cdp = await phone.newCDPSession(page);
+  await page.evaluate(() => { window.dunas.paused = true; });
   const [from, to] = await swipeAcross(page, box, 120);
   const touch = (type, t) => cdp.send('Input.dispatchTouchEvent', {
     type, touchPoints: t === null ? [] : [{ x: from[0] + (to[0] - from[0]) * t, y: from[1] + (to[1] - from[1]) * t }],
   });
   await touch('touchStart', 0);
-  await touch('touchMove', 1);
+  for (let k = 1; k <= 4; k++) await touch('touchMove', k / 4);
   await touch('touchEnd', null);
+  await page.evaluate(() => { window.dunas.paused = false; });
   await page.waitForTimeout(600);
   const pieces = await page.evaluate(() => window.dunas.wasm.pieces());
   check(pieces === 2, `a finger swipe cut the rope: ${pieces} pieces`);
@@ -239,21 +250,12 @@ async function phoneChecks(browser, origin, errors, outside) {
   await phone.close();
 }
 
-/// A quick swipe across the rope between its particles 3 and 4, as `[from, to]` page
-/// points: one stroke (each move the browser delivers takes it a frame or more, while the
-/// rope whirls a turn a second) across where the rope's middle will be a few frames on, up
-/// to `most` px each side of it and within the canvas `box` (a touch starts on the canvas).
+/// A swipe across the rope between its particles 3 and 4 (the game paused), as `[from, to]`
+/// page points: up to `most` px each side of it and within the canvas `box` (a touch starts
+/// on the canvas).
 async function swipeAcross(page, box, most) {
-  const look = () => page.evaluate(() => {
-    const [a, b] = [window.dunas.particleOnPage(3), window.dunas.particleOnPage(4)];
-    return [a, b, [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2], performance.now()];
-  });
-  const [, , before, t0] = await look();
-  await page.waitForTimeout(30);
-  const [a, b, now, t1] = await look();
-  // Where the middle will be 50 ms on, straight ahead.
-  const ahead = 50 / Math.max(t1 - t0, 1);
-  const mid = [now[0] + (now[0] - before[0]) * ahead, now[1] + (now[1] - before[1]) * ahead];
+  const [a, b] = await page.evaluate(() => [window.dunas.particleOnPage(3), window.dunas.particleOnPage(4)]);
+  const mid = [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2];
   const along = Math.hypot(b[0] - a[0], b[1] - a[1]);
   const dir = [-(b[1] - a[1]) / along, (b[0] - a[0]) / along];
   let reach = most;
