@@ -13,7 +13,7 @@ mod catapult;
 #[path = "common/term.rs"]
 mod term;
 
-use std::io::{self, IsTerminal};
+use std::io;
 use std::time::{Duration, Instant};
 
 use catapult::{Catapult, Penguin, landing_x};
@@ -103,12 +103,5 @@ fn print_frames() {
 }
 
 fn main() {
-    if io::stdout().is_terminal() {
-        if let Err(e) = animate() {
-            eprintln!("catapult: terminal error: {e}");
-            std::process::exit(1);
-        }
-    } else {
-        print_frames();
-    }
+    term::play("catapult", animate, print_frames);
 }

@@ -10,7 +10,7 @@
 #[path = "common/term.rs"]
 mod term;
 
-use std::io::{self, IsTerminal};
+use std::io;
 use std::time::{Duration, Instant};
 
 use dunas::ascii::{Canvas, View};
@@ -184,12 +184,5 @@ fn print_frames() {
 }
 
 fn main() {
-    if io::stdout().is_terminal() {
-        if let Err(e) = animate() {
-            eprintln!("cut: terminal error: {e}");
-            std::process::exit(1);
-        }
-    } else {
-        print_frames();
-    }
+    term::play("cut", animate, print_frames);
 }

@@ -13,7 +13,7 @@ mod grapple;
 #[path = "common/term.rs"]
 mod term;
 
-use std::io::{self, IsTerminal};
+use std::io;
 use std::time::{Duration, Instant};
 
 use grapple::{Grapple, HOOKS};
@@ -88,12 +88,5 @@ fn print_frames() {
 }
 
 fn main() {
-    if io::stdout().is_terminal() {
-        if let Err(e) = animate() {
-            eprintln!("grapple: terminal error: {e}");
-            std::process::exit(1);
-        }
-    } else {
-        print_frames();
-    }
+    term::play("grapple", animate, print_frames);
 }

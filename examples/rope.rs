@@ -14,7 +14,7 @@ mod rope_scene;
 #[path = "common/term.rs"]
 mod term;
 
-use std::io::{self, IsTerminal};
+use std::io;
 use std::time::{Duration, Instant};
 
 use dunas::FixedTimestep;
@@ -92,12 +92,5 @@ fn main() {
             std::process::exit(2);
         }
     };
-    if io::stdout().is_terminal() {
-        if let Err(e) = animate(seconds) {
-            eprintln!("rope: terminal error: {e}");
-            std::process::exit(1);
-        }
-    } else {
-        print_frames();
-    }
+    term::play("rope", || animate(seconds), print_frames);
 }

@@ -82,12 +82,17 @@ function polyline(p) {
   ctx.stroke();
 }
 
-function winterSky() {
+// The canvas filled top to bottom from colour `top` to colour `bottom`.
+function backdrop(top, bottom) {
   const g = ctx.createLinearGradient(0, 0, 0, canvas.height);
-  g.addColorStop(0, '#6f9fd0');
-  g.addColorStop(1, '#dfeaf5');
+  g.addColorStop(0, top);
+  g.addColorStop(1, bottom);
   ctx.fillStyle = g;
   ctx.fillRect(0, 0, canvas.width, canvas.height);
+}
+
+function winterSky() {
+  backdrop('#6f9fd0', '#dfeaf5');
   // Far hills.
   ctx.fillStyle = '#c7d6e6';
   ctx.beginPath();
@@ -151,19 +156,11 @@ function penguin(x, y, r) {
   }
 }
 
-// The cave: dusk light through its mouth, and far rock.
-function cave() {
-  const g = ctx.createLinearGradient(0, 0, 0, canvas.height);
-  g.addColorStop(0, '#2a3446');
-  g.addColorStop(1, '#6a7b94');
-  ctx.fillStyle = g;
-  ctx.fillRect(0, 0, canvas.width, canvas.height);
-}
-
 function draw() {
   const all = records();
   if (scene === CATAPULT) winterSky();
-  if (scene === GRAPPLE) cave();
+  // The cave: dusk light through its mouth.
+  if (scene === GRAPPLE) backdrop('#2a3446', '#6a7b94');
   for (const [style, p] of all) {
     switch (style) {
       case SNOW:

@@ -42,14 +42,7 @@ try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 720 } });
   const errors = [];
   const outside = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.route('**/*', (route) => {
-    const url = route.request().url();
-    if (url.startsWith(origin)) return route.continue();
-    outside.push(url);
-    return route.abort();
-  });
+  await guard(page, origin, '', errors, outside);
   await page.goto(`${origin}/`);
   await page.waitForFunction(() => window.dunas && window.dunas.wasm.time() > 0.5, null, { timeout: 20000 });
 
@@ -154,20 +147,26 @@ try {
   await browser.close();
   server.close();
 }
-/// The page on a phone: 412×915 CSS px at 2.625 screen pixels each, touch only.
-async function phoneChecks(browser, origin, errors, outside) {
-  const phone = await browser.newContext({
-    viewport: { width: 412, height: 915 }, deviceScaleFactor: 2.625, isMobile: true, hasTouch: true,
-  });
-  const page = await phone.newPage();
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`phone: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`phone: ${e}`));
+/// Collects `page`'s console errors and uncaught exceptions into `errors` (each headed by
+/// `tag`) and aborts, into `outside`, every request beyond `origin`.
+async function guard(page, origin, tag, errors, outside) {
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`${tag}${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`${tag}${e}`));
   await page.route('**/*', (route) => {
     const url = route.request().url();
     if (url.startsWith(origin)) return route.continue();
     outside.push(url);
     return route.abort();
   });
+}
+
+/// The page on a phone: 412×915 CSS px at 2.625 screen pixels each, touch only.
+async function phoneChecks(browser, origin, errors, outside) {
+  const phone = await browser.newContext({
+    viewport: { width: 412, height: 915 }, deviceScaleFactor: 2.625, isMobile: true, hasTouch: true,
+  });
+  const page = await phone.newPage();
+  await guard(page, origin, 'phone: ', errors, outside);
   await page.goto(`${origin}/`);
   await page.waitForFunction(() => window.dunas && window.dunas.wasm.time() > 1.0, null, { timeout: 20000 });
   // The screen as the page lays it out, and the rope's drawn length along its particles.

@@ -2,7 +2,7 @@
 //! example ends, and a frame wait that returns early on `q`, Esc or Ctrl-C.
 #![allow(dead_code)]
 
-use std::io::{self, Write};
+use std::io::{self, IsTerminal, Write};
 use std::time::Instant;
 
 use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyModifiers};
@@ -58,4 +58,18 @@ pub fn wants_to_quit(deadline: Instant) -> io::Result<bool> {
         }
     }
     Ok(false)
+}
+
+/// An animated example's `main`: `animate` on a terminal (a terminal error ends the example
+/// with status 1, its message headed by `name`), otherwise `print` (frames as text, for a
+/// pipe or CI).
+pub fn play(name: &str, animate: impl FnOnce() -> io::Result<()>, print: impl FnOnce()) {
+    if io::stdout().is_terminal() {
+        if let Err(e) = animate() {
+            eprintln!("{name}: terminal error: {e}");
+            std::process::exit(1);
+        }
+    } else {
+        print();
+    }
 }
