@@ -107,6 +107,14 @@ impl<S: Scalar> Scene<S> {
     }
 }
 
+/// The value `tests/golden.txt` holds for `format` (`q16` or `f32`), if it holds one.
+pub fn expected(format: &str) -> Option<u64> {
+    let line = include_str!("../../tests/golden.txt")
+        .lines()
+        .find_map(|l| l.strip_prefix(format)?.strip_prefix('='))?;
+    u64::from_str_radix(line.trim(), 16).ok()
+}
+
 /// The hand's x at `frame`, the scene's scripted input: a zigzag 20 units wide, 40 frames
 /// a stroke.
 pub fn input(frame: u32) -> i8 {

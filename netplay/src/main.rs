@@ -101,11 +101,7 @@ mod tests {
 
     /// The golden value of `format` in `tests/golden.txt`.
     fn golden(format: &str) -> u64 {
-        let line = include_str!("../../tests/golden.txt")
-            .lines()
-            .find_map(|l| l.strip_prefix(format).and_then(|l| l.strip_prefix('=')))
-            .expect("a golden line");
-        u64::from_str_radix(line.trim(), 16).expect("hexadecimal")
+        golden::expected(format).expect("a golden line in hexadecimal")
     }
 
     #[test]

@@ -11,11 +11,7 @@ const CHECK_DISTANCE: u32 = 8;
 
 /// The golden value of `format` in `tests/golden.txt` (`q16=…` and `f32=…`, hexadecimal).
 fn golden(format: &str) -> u64 {
-    let line = include_str!("../golden.txt")
-        .lines()
-        .find_map(|l| l.strip_prefix(format).and_then(|l| l.strip_prefix('=')))
-        .expect("a golden line");
-    u64::from_str_radix(line.trim(), 16).expect("hexadecimal")
+    golden::expected(format).expect("a golden line in hexadecimal")
 }
 
 /// At every frame of the scripted scene's 600 (a moving hand, contacts on the drawn curve,
