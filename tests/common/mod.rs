@@ -685,23 +685,23 @@ fn crosses((a, b): (Vec3<f64>, Vec3<f64>), t: [Vec3<f64>; 3]) -> bool {
 
 /// The stiff cloth `DirectSprings`' locking is measured on (`tests/suite/converge.rs`, the
 /// evaluation's `evaluate/src/chains.rs`):
-/// a 1 m, 1 kg, 8×8 cloth held level by two corners of one edge, its springs of axial
-/// stiffness `ea` (N; bending a tenth of it), under a drag of 2/s, stepped by `solver` (f64;
-/// statics: it hangs 1.00 m below its pins).
+/// a 1 m, 1 kg, `U`×`U` cloth held level by two corners of one edge, its springs of axial
+/// stiffness `ea` (N; `ea · (U − 1)` N/m a spring, bending a tenth of it), under a drag of
+/// 2/s, stepped by `solver` (f64; statics: it hangs 1.00 m below its pins).
 ///
 /// # Errors
 /// The cloth's ([`Cloth::rectangle`], `set_inv_mass`): a stiffness that is not positive.
-pub fn hung_cloth(
+pub fn hung_cloth<const U: usize>(
     ea: f64,
     solver: DirectSprings,
-) -> Result<Cloth<Vec3<f64>, 8, 8, DirectSprings>, Error> {
+) -> Result<Cloth<Vec3<f64>, U, U, DirectSprings>, Error> {
     let settings = Settings {
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 2.0,
         ..Settings::default()
     }
     .with_integrator(solver);
-    let k = ea * 7.0;
+    let k = ea * (U as f64 - 1.0);
     let materials = [k, k, 0.1 * k].map(|k| Material {
         stiffness: k,
         damping: 0.0,
@@ -713,6 +713,6 @@ pub fn hung_cloth(
     );
     let mut cloth = Cloth::rectangle(origin, du, dv, 1.0, materials, settings)?;
     cloth.set_inv_mass(0, 0.0)?;
-    cloth.set_inv_mass(7, 0.0)?;
+    cloth.set_inv_mass(U - 1, 0.0)?;
     Ok(cloth)
 }

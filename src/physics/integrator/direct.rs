@@ -41,38 +41,51 @@ use core::cell::Cell;
 /// explicit force clamped to what stops its ends' closing speed in one solve
 /// (`c ≤ 1 / (h (wa + wb))`).
 ///
-/// Measured (`tests/suite/physics.rs`, `direct_springs_*`; `docs/summary.md`, section (j)):
-/// - the boat scene's sail in a steady wind rests within 0.01 mm of the balance symplectic
-///   Euler reaches in `f64` (3.1 mm in `Q16`); a hanging rope sags as statics says at every
-///   stiffness from 10² to 10⁸ N/m, one substep a frame;
-/// - it damps, as backward Euler does: an undamped released rope keeps 16% of its swing's
-///   energy over 10 s (4% to 11% with a bob of 1 to 10 times its mass), against 96% for
-///   symplectic Euler; with [`keep_energy`](Self::keep_energy) it keeps it whole;
-/// - motion that turns stiff springs is slowed (projective dynamics' locking): each
-///   iteration turns the springs' directions only part of the way, by about `m / (h² k)`.
-///   A 1 kg, 8×8 cloth of 900 N/m let go of all but one pin swings down 46% as far as it
-///   should in its first half second with one iteration, 86% with four; 10 times stiffer,
-///   8% and 26%. A measured solve says so ([`measure`](Self::measure)): a 1 m, 1 kg, 8×8
-///   cloth held level by two corners under a drag of 2/s, at the defaults, hangs 0.93 m
-///   below them after 10 s with axial stiffness `EA = 10³ N` and 0.90 m at `10⁴` (statics:
-///   1.00 m; `docs/summary.md`, targets), every frame reported unconverged
-///   (`tests/suite/converge.rs`). What it cannot turn in `iterations`, no setting here turns at one
-///   solve's cost: for cloth that swings free and stiff, use symplectic Euler's substeps;
-///   for a rope under a heavy bob, [`DirectChain`](super::DirectChain) (a 10 kg bob on a
-///   1 kg rope of 10⁵ N/m stretches it 2.0% here).
+/// In floats with more than one iteration, the iterations after the first go along
+/// conjugate directions: nonlinear conjugate gradients, preconditioned by the factor, each
+/// direction taken as far as the solve's objective curves along it (each spring's
+/// stiffness along it, its tension across it). The factor's own step, which is all `Q16`
+/// and one iteration take, turns a stiff spring only by about `m / (h² k)` an iteration
+/// (projective dynamics' locking), and slows whatever turns stiff springs. Such a solve
+/// also never ends with more energy than it started with (motion, gravity and springs,
+/// plus the force fields' work, less the drag and the springs' damping): what it would
+/// gain is taken from the free particles' velocities.
+///
+/// Measured (`tests/suite/physics.rs` and `tests/suite/converge.rs`, `direct_springs_*`;
+/// `docs/summary.md`, section (j) and its targets):
+/// - the boat scene's sail in a steady wind rests within 0.001 mm of the balance
+///   symplectic Euler reaches in `f64`, and within 0.012 mm 100 times stiffer (3.1 mm in
+///   `Q16`); a hanging rope sags as statics says at every stiffness from 10² to 10⁸ N/m,
+///   one substep a frame;
+/// - a 1 m, 1 kg cloth held level by two corners under a drag of 2/s, 8×8 and 20×20,
+///   at the defaults hangs within 1% of the statics' 1.00 m after 10 s at axial stiffness
+///   `EA = 10³` and `10⁴ N` (it hung 0.93 and 0.90 m, 8×8, with the factor's own steps), but
+///   still moves 1 to 13 mm in its 10th second; stiffer still, it falls slower. A 1 kg,
+///   8×8 cloth of 900 N/m let go of all but one pin swings down as far as symplectic
+///   Euler's in its first half second (103%; 46% with one iteration). A measured solve
+///   that stops short says so ([`measure`](Self::measure));
+/// - it damps, as backward Euler does: an undamped released rope keeps 1.4% of its swing's
+///   energy over 10 s (7.6% and 9.5% with a bob of 1 and 10 times its mass), where the
+///   converged solve keeps 3.7%, 7.8% and 9.8%, against 96% for symplectic Euler; with
+///   [`keep_energy`](Self::keep_energy) it keeps it whole. For a rope under a heavy bob,
+///   use [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m
+///   stretches it 2.0% here).
 ///
 /// Cost per solve, `n` particles of which `f` free, and band `b` (2 for a rope, `2U` for a
 /// cloth): a factor, when something changed, of two passes over the springs, a walk of
 /// about `n·2b` steps and about `f·b²/2` multiply-adds; per iteration a square root and a
 /// division a spring and `2·e` vector multiply-adds, `e ≤ f·b` the entries of the rows'
 /// envelopes (each row from its first spring), and the measure, a pass over the springs
-/// after each. Unmeasured, the same at every stiffness; measured, from 1 iteration where
-/// they converge at once to `iterations` where they do not. A topology that lists its
+/// after each; along conjugate directions, another pass over the springs (a square root
+/// and a division each) and three passes over the particles an iteration, and two
+/// passes over the springs a solve for the energy (the stiff 8×8 cloth's frame about
+/// twice as dear as with the factor's own steps). Unmeasured, the same at every stiffness;
+/// measured, from 1 iteration where they converge at once to `iterations` where they do not. A topology that lists its
 /// springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 98 600 on average, 132 800 measured and 190 400 at the defaults. Memory: the factor, the
+/// takes 98 600 on average, 132 800 measured and 269 100 at the defaults (along conjugate directions). Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -99,8 +112,9 @@ use core::cell::Cell;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectSprings {
     /// Most iterations a solve (4 by default; 0 counts as 1), each a spring direction
-    /// update and a back-substitution. With [`measure`](Self::measure), a solve stops as
-    /// soon as it is within [`TOLERANCE`](super::TOLERANCE).
+    /// update and a back-substitution; in floats, from 2 on, along conjugate directions
+    /// (see the type's docs). With [`measure`](Self::measure), a solve stops as soon as it
+    /// is within [`TOLERANCE`](super::TOLERANCE).
     pub iterations: u8,
     /// Whether each solve measures how far it ended from its equations (`true` by
     /// default): what each free particle still owes to them (its force imbalance times
@@ -124,13 +138,15 @@ pub struct DirectSprings {
     /// takes; what a solve cannot give back (its particles nearly still) is owed to the
     /// next. Measured (`tests/suite/physics.rs`, `direct_springs_keep_energy_*`): an undamped
     /// released rope keeps its swing's energy within 1% over 10 s, with a bob of up to 10
-    /// times its mass too (16% without); a bob on a spring loses its energy to drag as
+    /// times its mass too (1.4% without); a bob on a spring loses its energy to drag as
     /// `e^(−γ t)` says within 15% over 4 s; the boat scene's sail rests within 0.001 mm of
     /// its balance; with a drag of 0.1/s the released rope keeps 50% of its swing over 10 s
     /// (symplectic Euler 35%, Verlet 41%: `docs/summary.md`, section (j)). The motion it
     /// keeps is livelier where stiff springs turn: a heavy bob stretches its rope as
     /// symplectic Euler's does. Costs two passes over the springs more a solve, a square
-    /// root a spring each (the 8-particle rope's frame 1.16 times as dear).
+    /// root a spring each, where the iterations are the factor's own; along conjugate
+    /// directions (floats, the defaults) those passes are taken anyway (the 8-particle
+    /// rope's frame as dear: `docs/summary.md`, section (j)).
     pub keep_energy: bool,
 }
 
@@ -198,10 +214,10 @@ impl Integrator for DirectSprings {
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> Solved<P::Scalar> {
         let solve = |state: &mut State<P, Sh>, hs, forces: &mut F| {
-            if self.keep_energy {
+            if self.keep_energy || self.conjugate::<P::Scalar>() {
                 self.solve_keeping(model, state, memory, hs, forces)
             } else {
-                self.solve(model, state, memory, hs, forces, None)
+                self.solve(model, state, memory, hs, forces, (None, None))
             }
         };
         super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
@@ -292,9 +308,11 @@ impl<S: Scalar, T: Topology<S>, W: Fn(S) -> S> Springs<S> for Weighted<'_, T, W>
 }
 
 impl DirectSprings {
-    /// [`solve`](Self::solve), then the energy its damping took given back (see
-    /// [`keep_energy`](Self::keep_energy)); its own function, so that a solve without it
-    /// keeps no room on the stack for the start's positions and the forces.
+    /// [`solve`](Self::solve), along conjugate directions where
+    /// [`conjugate`](Self::conjugate), then the energy its damping took given back (see
+    /// [`keep_energy`](Self::keep_energy)), or without it what the solve gained taken
+    /// away; its own function, so that a plain solve keeps no room on the stack for the
+    /// start's positions, the forces and the directions.
     #[inline(never)]
     fn solve_keeping<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
@@ -310,13 +328,28 @@ impl DirectSprings {
         let e0 = model.energy_less_damping(x, v, h, false) + memory.owed;
         let x0 = state.pos;
         let mut pushes = Sh::filled(P::default());
-        let ok = self.solve(model, state, memory, h, forces, Some(&mut pushes));
+        let mut conjugate = self.conjugate::<P::Scalar>().then(Conjugate::new);
+        let outputs = (Some(&mut pushes), conjugate.as_mut());
+        let ok = self.solve(model, state, memory, h, forces, outputs);
         let (start, mass) = ((Sh::flat(&x0), e0), Sh::flat(&memory.mass));
-        memory.owed = give_back(model, state, start, Sh::flat(&pushes), mass);
+        let most = if self.keep_energy { 2 } else { 1 };
+        let left = give_back(model, state, start, Sh::flat(&pushes), (mass, most));
+        memory.owed = if self.keep_energy {
+            left
+        } else {
+            P::Scalar::ZERO
+        };
         ok
     }
 
-    /// One solve; the accelerations of its forces copied into `pushes` when asked.
+    /// Whether a solve's iterations go along conjugate directions (floats, more than one
+    /// iteration: see [`iterations`](Self::iterations)).
+    fn conjugate<S: Scalar>(&self) -> bool {
+        !S::FIXED_POINT && self.iterations > 1
+    }
+
+    /// One solve; the accelerations of its forces copied into `pushes` when asked, its
+    /// iterations along `conjugate`'s directions when given.
     fn solve<P: Point, Sh: Shape, T: Topology<P::Scalar>, F: ForceField<P>>(
         &self,
         model: &Model<'_, P, Sh, T>,
@@ -324,7 +357,7 @@ impl DirectSprings {
         memory: &mut Factored<P::Scalar, Sh>,
         h: P::Scalar,
         forces: &mut F,
-        pushes: Option<&mut Sh::PerParticle<P>>,
+        (pushes, mut conjugate): Extras<'_, P, Sh>,
     ) -> Solved<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let w = model.inv_mass();
@@ -457,12 +490,20 @@ impl DirectSprings {
                     break;
                 }
             }
-            // The change of each free particle (a held one's is 0), in the rows' order.
+            // The change of each free particle (a held one's is 0), in the rows' order: the
+            // solve's, or a length along the conjugate direction made from it.
             let factor = &memory.factor;
-            let change = factor.solve(r, Sh::flat_mut(&mut solved));
+            let rows = factor.particles();
+            let mut change = factor.solve(r, Sh::flat_mut(&mut solved));
+            let mut length = P::Scalar::ONE;
+            if let Some(conjugate) = conjugate.as_deref_mut() {
+                let x = Sh::flat(&state.pos);
+                length = conjugate.turn(model, (x, r), (change, rows), mass, h);
+                change = Sh::flat(&conjugate.direction);
+            }
             let (x, v) = (Sh::flat_mut(&mut state.pos), Sh::flat_mut(&mut state.vel));
-            for (&p, &dx) in factor.particles().iter().zip(change) {
-                let p = p as usize;
+            for (&p, &dx) in rows.iter().zip(change) {
+                let (p, dx) = (p as usize, dx * length);
                 if let (Some(x), Some(v)) = (x.get_mut(p), v.get_mut(p)) {
                     *x += dx;
                     *v += dx * inv_h;
@@ -473,10 +514,10 @@ impl DirectSprings {
             }
             if let Some(gap) = &mut gap {
                 let g = Sh::flat_mut(gap);
-                for (&p, &dx) in factor.particles().iter().zip(change) {
+                for (&p, &dx) in rows.iter().zip(change) {
                     let p = p as usize;
                     if let (Some(g), Some(&m)) = (g.get_mut(p), mass.get(p)) {
-                        *g -= dx * m;
+                        *g -= dx * (length * m);
                     }
                 }
             }
@@ -485,17 +526,156 @@ impl DirectSprings {
     }
 }
 
+/// Where a solve keeps what it is asked for beyond the state: its forces' accelerations
+/// ([`DirectSprings::keep_energy`]) and its conjugate directions.
+type Extras<'a, P, Sh> = (
+    Option<&'a mut <Sh as Shape>::PerParticle<P>>,
+    Option<&'a mut Conjugate<P, Sh>>,
+);
+
+/// The directions of a solve's iterations after the first (floats, more than one
+/// iteration): nonlinear conjugate gradients preconditioned by the factor (Polak-Ribière,
+/// started again where a direction would not lower the solve's objective), each taken as
+/// far as the objective's second-order model along it says. The factor's own step turns a
+/// stiff spring only by about `m / (h² k)` an iteration; a length along a conjugate
+/// direction takes the slow motion it leaves whole.
+struct Conjugate<P: Point, Sh: Shape> {
+    /// This iteration's direction, in the rows' order.
+    direction: Sh::PerParticle<P>,
+    /// The last iteration's solve, in the rows' order.
+    last: Sh::PerParticle<P>,
+    /// This iteration's direction by particle (0 for a held one).
+    spread: Sh::PerParticle<P>,
+    /// The last iteration's residual times its solve (0 before the first).
+    last_dot: P::Scalar,
+}
+
+impl<P: Point, Sh: Shape> Conjugate<P, Sh> {
+    fn new() -> Self {
+        Conjugate {
+            direction: Sh::filled(P::default()),
+            last: Sh::filled(P::default()),
+            spread: Sh::filled(P::default()),
+            last_dot: P::Scalar::ZERO,
+        }
+    }
+
+    /// Makes the next direction from the residual `r` at `x` (by particle) and its
+    /// `solve` by the factor (in the order of `rows`), and returns how far to go along it:
+    /// the residual along it over the objective's curvature along it (`M` and each
+    /// spring's `h² k` along it, its tension's `h² k (1 − rest / l)` across it and its
+    /// damping's `h c` along it), up to 64; 1 where that is not a positive number.
+    fn turn<T: Topology<P::Scalar>>(
+        &mut self,
+        model: &Model<'_, P, Sh, T>,
+        (x, r): (&[P], &[P]),
+        (solve, rows): (&[P], &[u32]),
+        mass: &[P::Scalar],
+        h: P::Scalar,
+    ) -> P::Scalar {
+        let zero = P::Scalar::ZERO;
+        let (direction, last) = (
+            Sh::flat_mut(&mut self.direction),
+            Sh::flat_mut(&mut self.last),
+        );
+        let residual = |p: u32| r.get(p as usize).copied().unwrap_or_default();
+        let (mut dot, mut across) = (zero, zero);
+        for ((&p, &z), &last) in rows.iter().zip(solve).zip(last.iter()) {
+            dot += residual(p).dot(z);
+            across += residual(p).dot(last);
+        }
+        let beta = if self.last_dot > zero {
+            ((dot - across) / self.last_dot).max(zero)
+        } else {
+            zero
+        };
+        self.last_dot = dot;
+        let mut descent = zero;
+        for (((&p, &z), d), last) in rows.iter().zip(solve).zip(direction.iter_mut()).zip(last) {
+            *d = z + *d * beta;
+            *last = z;
+            descent += residual(p).dot(*d);
+        }
+        // Not downhill (or not finite): the solve's own direction.
+        if descent.partial_cmp(&zero) != Some(core::cmp::Ordering::Greater) {
+            for (d, &z) in direction.iter_mut().zip(solve) {
+                *d = z;
+            }
+            descent = dot;
+        }
+        let spread = Sh::flat_mut(&mut self.spread);
+        spread.fill(P::default());
+        let mut curvature = zero;
+        for (&p, &d) in rows.iter().zip(direction.iter()) {
+            if let (Some(s), Some(&m)) = (spread.get_mut(p as usize), mass.get(p as usize)) {
+                *s = d;
+                curvature += m * d.dot(d);
+            }
+        }
+        curvature += springs_curvature(model, x, spread, h);
+        let length = (descent / curvature).min(P::Scalar::from_i16(64));
+        if curvature > zero && length > zero && length.is_finite() {
+            length
+        } else {
+            P::Scalar::ONE
+        }
+    }
+}
+
+/// `Σ h² k (u·Δ)² + h² k max(0, 1 − rest / l) (|Δ|² − (u·Δ)²) + h c (u·Δ)²` over the springs
+/// with a free end, `u` a spring's direction at `x`, `l` its length and `Δ` the difference of
+/// its ends' `d`: the springs' curvature of a solve's objective along `d`.
+fn springs_curvature<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+    model: &Model<'_, P, Sh, T>,
+    x: &[P],
+    d: &[P],
+    h: P::Scalar,
+) -> P::Scalar {
+    let zero = P::Scalar::ZERO;
+    let w = model.inv_mass();
+    let n = x.len().min(d.len()).min(w.len());
+    let mut sum = zero;
+    model.topology.for_each_run(|a, b, count, rest, m| {
+        if !(m.stiffness > zero && a.max(b).saturating_add(count) <= n) {
+            return;
+        }
+        let k = m.stiffness * h * h;
+        let c = m.damping * h;
+        for i in 0..count {
+            let wsum = w[a + i] + w[b + i];
+            let span = x[a + i] - x[b + i];
+            let l = span.length();
+            if wsum <= zero || l <= tiny_length::<P::Scalar>() {
+                continue;
+            }
+            let u = span * (P::Scalar::ONE / l);
+            let change = d[a + i] - d[b + i];
+            let along = u.dot(change);
+            let across = (change.dot(change) - along * along).max(zero);
+            // The damping's clamp as in the solve: `h² c` at most `h / (wa + wb)`.
+            let damping = if c > zero {
+                c.min(P::Scalar::ONE / wsum)
+            } else {
+                zero
+            };
+            let tension = (P::Scalar::ONE - rest / l).max(zero);
+            sum += (k + damping) * along * along + k * tension * across;
+        }
+    });
+    sum
+}
+
 /// Scales the free particles' velocities so that the motion's energy is back to `e0` (the
 /// start's, less the springs' damping, plus what is owed), plus the work of the forces in
 /// the accelerations `a` (gravity's part is in the energy) from the start `x0` (`mass` each
-/// particle's, 0 for a held one), by a factor from 0 to 2; returns what that could not give
-/// back (0 when a figure is not finite).
+/// particle's, 0 for a held one), by a factor from 0 to `most`; returns what that could not
+/// give back (0 when a figure is not finite).
 fn give_back<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     model: &Model<'_, P, Sh, T>,
     state: &mut State<P, Sh>,
     (x0, e0): (&[P], P::Scalar),
     a: &[P],
-    mass: &[P::Scalar],
+    (mass, most): (&[P::Scalar], i16),
 ) -> P::Scalar {
     let (zero, one, half) = (P::Scalar::ZERO, P::Scalar::ONE, P::Scalar::ratio(1, 2));
     let (mut work, mut kinetic) = (zero, zero);
@@ -511,7 +691,10 @@ fn give_back<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     if !(missing.is_finite() && kinetic > zero) {
         return if missing.is_finite() { missing } else { zero };
     }
-    let scale = (one + missing / kinetic).sqrt().min(P::Scalar::from_i16(2));
+    let scale = (one + missing / kinetic)
+        .max(zero)
+        .sqrt()
+        .min(P::Scalar::from_i16(most));
     if !scale.is_finite() {
         return zero;
     }
