@@ -54,13 +54,13 @@ use core::cell::Cell;
 /// Measured (`tests/suite/physics.rs` and `tests/suite/converge.rs`, `direct_springs_*`;
 /// `docs/summary.md`, section (j) and its targets):
 /// - the boat scene's sail in a steady wind rests within 0.001 mm of the balance
-///   symplectic Euler reaches in `f64`, and within 0.012 mm 100 times stiffer (3.1 mm in
+///   symplectic Euler reaches in `f64`, and within 0.017 mm 100 times stiffer (3.1 mm in
 ///   `Q16`); a hanging rope sags as statics says at every stiffness from 10² to 10⁸ N/m,
 ///   one substep a frame;
 /// - a 1 m, 1 kg cloth held level by two corners under a drag of 2/s, 8×8 and 20×20,
 ///   at the defaults hangs within 1% of the statics' 1.00 m after 10 s at axial stiffness
 ///   `EA = 10³` and `10⁴ N` (it hung 0.93 and 0.90 m, 8×8, with the factor's own steps), but
-///   still moves 1 to 13 mm in its 10th second; stiffer still, it falls slower. A 1 kg,
+///   still moves 1 to 12 mm in its 10th second; stiffer still, it falls slower. A 1 kg,
 ///   8×8 cloth of 900 N/m let go of all but one pin swings down as far as symplectic
 ///   Euler's in its first half second (103%; 46% with one iteration). A measured solve
 ///   that stops short says so ([`measure`](Self::measure));
@@ -139,8 +139,8 @@ pub struct DirectSprings {
     /// next. Measured (`tests/suite/physics.rs`, `direct_springs_keep_energy_*`): an undamped
     /// released rope keeps its swing's energy within 1% over 10 s, with a bob of up to 10
     /// times its mass too (1.4% without); a bob on a spring loses its energy to drag as
-    /// `e^(−γ t)` says within 15% over 4 s; the boat scene's sail rests within 0.001 mm of
-    /// its balance; with a drag of 0.1/s the released rope keeps 50% of its swing over 10 s
+    /// `e^(−γ t)` says within 15% over 4 s; the boat scene's sail rests within 0.002 mm of
+    /// its balance; with a drag of 0.1/s the released rope keeps 39% of its swing over 10 s
     /// (symplectic Euler 35%, Verlet 41%: `docs/summary.md`, section (j)). The motion it
     /// keeps is livelier where stiff springs turn: a heavy bob stretches its rope as
     /// symplectic Euler's does. Costs two passes over the springs more a solve, a square
@@ -624,7 +624,9 @@ impl<P: Point, Sh: Shape> Conjugate<P, Sh> {
 
 /// `Σ h² k (u·Δ)² + h² k max(0, 1 − rest / l) (|Δ|² − (u·Δ)²) + h c (u·Δ)²` over the springs
 /// with a free end, `u` a spring's direction at `x`, `l` its length and `Δ` the difference of
-/// its ends' `d`: the springs' curvature of a solve's objective along `d`.
+/// its ends' `d`: the springs' curvature of a solve's objective along `d`. A division a
+/// spring and no square root: the tension's share is taken as `(l² − rest²) / (2 l²)`,
+/// `1 − rest / l` to within half the spring's strain.
 fn springs_curvature<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     model: &Model<'_, P, Sh, T>,
     x: &[P],
@@ -634,6 +636,7 @@ fn springs_curvature<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     let zero = P::Scalar::ZERO;
     let w = model.inv_mass();
     let n = x.len().min(d.len()).min(w.len());
+    let tiny = tiny_length::<P::Scalar>();
     let mut sum = zero;
     model.topology.for_each_run(|a, b, count, rest, m| {
         if !(m.stiffness > zero && a.max(b).saturating_add(count) <= n) {
@@ -641,25 +644,27 @@ fn springs_curvature<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         }
         let k = m.stiffness * h * h;
         let c = m.damping * h;
+        let (rest2, half) = (rest * rest, P::Scalar::ratio(1, 2));
         for i in 0..count {
             let wsum = w[a + i] + w[b + i];
             let span = x[a + i] - x[b + i];
-            let l = span.length();
-            if wsum <= zero || l <= tiny_length::<P::Scalar>() {
+            let l2 = span.dot(span);
+            if wsum <= zero || l2 <= tiny * tiny {
                 continue;
             }
-            let u = span * (P::Scalar::ONE / l);
+            let inv = P::Scalar::ONE / l2;
             let change = d[a + i] - d[b + i];
-            let along = u.dot(change);
-            let across = (change.dot(change) - along * along).max(zero);
+            let projected = span.dot(change);
+            let along = projected * projected * inv;
+            let across = (change.dot(change) - along).max(zero);
             // The damping's clamp as in the solve: `h² c` at most `h / (wa + wb)`.
             let damping = if c > zero {
                 c.min(P::Scalar::ONE / wsum)
             } else {
                 zero
             };
-            let tension = (P::Scalar::ONE - rest / l).max(zero);
-            sum += (k + damping) * along * along + k * tension * across;
+            let tension = ((l2 - rest2) * inv * half).max(zero);
+            sum += (k + damping) * along + k * tension * across;
         }
     });
     sum
