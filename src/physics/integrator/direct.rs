@@ -657,11 +657,12 @@ fn springs_curvature<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
             let projected = span.dot(change);
             let along = projected * projected * inv;
             let across = (change.dot(change) - along).max(zero);
-            // The damping's clamp as in the solve: `h² c` at most `h / (wa + wb)`.
-            let damping = if c > zero {
-                c.min(P::Scalar::ONE / wsum)
+            // The damping's clamp as in the solve: `h² c` at most `h / (wa + wb)` (a
+            // division only where it bites).
+            let damping = if c * wsum > P::Scalar::ONE {
+                P::Scalar::ONE / wsum
             } else {
-                zero
+                c
             };
             let tension = ((l2 - rest2) * inv * half).max(zero);
             sum += (k + damping) * along + k * tension * across;
