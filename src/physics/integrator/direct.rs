@@ -65,8 +65,8 @@ use core::cell::Cell;
 ///   Euler's in its first half second (103%; 46% with one iteration). A measured solve
 ///   that stops short says so ([`measure`](Self::measure));
 /// - it damps, as backward Euler does: an undamped released rope keeps 1.4% of its swing's
-///   energy over 10 s (7.6% and 9.5% with a bob of 1 and 10 times its mass), where the
-///   converged solve keeps 3.7%, 7.8% and 9.8%, against 96% for symplectic Euler; with
+///   energy over 10 s (7.5% and 9.3% with a bob of 1 and 10 times its mass), where the
+///   converged solve keeps 3.7%, 7.7% and 9.8%, against 96% for symplectic Euler; with
 ///   [`keep_energy`](Self::keep_energy) it keeps it whole. For a rope under a heavy bob,
 ///   use [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m
 ///   stretches it 2.0% here).
