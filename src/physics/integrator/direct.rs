@@ -76,10 +76,11 @@ use core::cell::Cell;
 /// about `n·2b` steps and about `f·b²/2` multiply-adds; per iteration a square root and a
 /// division a spring and `2·e` vector multiply-adds, `e ≤ f·b` the entries of the rows'
 /// envelopes (each row from its first spring), and the measure, a pass over the springs
-/// after each; along conjugate directions, another pass over the springs (a square root
-/// and a division each) and three passes over the particles an iteration, and two
-/// passes over the springs a solve for the energy (the stiff 8×8 cloth's frame about
-/// twice as dear as with the factor's own steps). Unmeasured, the same at every stiffness;
+/// after each; along conjugate directions, another pass over the springs (a division
+/// each) and three passes over the particles an iteration, and two passes over the
+/// springs a solve for the energy (the boat sail 100 times stiffer, every solve taking
+/// its 4 iterations, costs 1.93 times its frame at its own stiffness: `docs/summary.md`,
+/// targets). Unmeasured, the same at every stiffness;
 /// measured, from 1 iteration where they converge at once to `iterations` where they do not. A topology that lists its
 /// springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
