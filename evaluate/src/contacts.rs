@@ -224,8 +224,8 @@ pub fn run(run: &mut Run) {
             costs.lying.step
         ),
         floor_lying <= 1.0,
-        "each span on the floor takes a 21-key search for its deepest point and a redraw of \
-         the curve after its push, every substep",
+        "each span on the floor takes a 21-key search for its deepest point and, after its \
+         push, a redraw of the 7 spans its particles weigh in, every substep",
     );
     for (what, target, state) in [
         ("settled in a pile on a floor", 10.0, &costs.piled),
@@ -246,8 +246,9 @@ pub fn run(run: &mut Run) {
             )
             .replace(" (fastest NaN×;", " (mean of its frames;"),
             state.both <= target * state.step,
-            "every substep redraws and searches each pair of spans whose boxes meet (samples, \
-             then Gauss-Newton), in rounds until no overlap is over 1% of the diameter",
+            "every substep searches each pair of spans whose boxes meet (samples, then \
+             Gauss-Newton) and redraws the spans each push moved, in rounds until no overlap \
+             is over 1% of the diameter",
         );
     }
     // The towel of the test `a_towel_folded_over_a_rod_never_passes_through_itself`.

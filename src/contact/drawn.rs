@@ -22,8 +22,10 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn cubic(&self, span: usize) -> Option<[P; 4]>;
     /// The control points' weights in that point.
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]);
-    /// Redraws through moved control points; `false` when they left the range.
-    fn rebuild(&mut self, pos: &[P; K]) -> bool;
+    /// Draws again the spans that the control points `moved` (the first and the last,
+    /// inclusive) weigh in, after they moved: the spans drawn again, `(first, count)`
+    /// counted round a loop, or `None` when the moved points left the range.
+    fn rebuild(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)>;
     /// Whether the last span joins the first (a loop).
     fn is_closed(&self) -> bool {
         false
@@ -34,56 +36,36 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     }
 }
 
-/// A [`Smoothed`] curve with what rebuilds it: a ring, or the open curve through the first
-/// `len` control points.
-pub(super) struct Rebuilt<P: Point, const K: usize> {
-    pub(super) curve: Smoothed<P, K>,
-    pub(super) smoothing: Smoothing,
-    pub(super) closed: bool,
-    pub(super) len: usize,
-}
-
-impl<P: Point, const K: usize> DrawnSpans<P, K> for Rebuilt<P, K> {
+impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
     fn span_count(&self) -> usize {
-        self.curve.span_count()
+        Smoothed::span_count(self)
     }
     fn span_bounds(&self, span: usize) -> Aabb<P> {
-        self.curve.span_bounds(span)
+        Smoothed::span_bounds(self, span)
     }
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
-        self.curve.deepest(span, key)
+        Smoothed::deepest(self, span, key)
     }
     fn point(&self, span: usize, t: P::Scalar) -> P {
-        self.curve.point(span, t)
+        Smoothed::point(self, span, t)
     }
     fn tangent(&self, span: usize, t: P::Scalar) -> P {
-        self.curve.tangent(span, t)
+        Smoothed::tangent(self, span, t)
     }
     fn cubic(&self, span: usize) -> Option<[P; 4]> {
-        self.curve.span_points(span).try_into().ok()
+        self.span_points(span).try_into().ok()
     }
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
-        self.curve.weights(span, t, weights);
+        Smoothed::weights(self, span, t, weights);
     }
     fn is_closed(&self) -> bool {
-        self.closed
+        Smoothed::span_count(self) == K
     }
     fn is_straight(&self) -> bool {
-        self.smoothing == Smoothing::Polyline
+        self.method() == Smoothing::Polyline
     }
-    fn rebuild(&mut self, pos: &[P; K]) -> bool {
-        let curve = match (self.closed, self.len == K) {
-            (true, _) => Smoothed::ring(self.smoothing, pos),
-            (false, true) => Smoothed::open(self.smoothing, pos),
-            (false, false) => Smoothed::open_first(self.smoothing, pos, self.len),
-        };
-        match curve {
-            Ok(c) => {
-                self.curve = c;
-                true
-            }
-            Err(_) => false,
-        }
+    fn rebuild(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)> {
+        self.redraw(pos, moved).ok()
     }
 }
 
@@ -154,6 +136,14 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
         if x != S::ZERO && self.len < K {
             (self.index[self.len], self.weight[self.len]) = (i, x);
             self.len += 1;
+        }
+    }
+
+    /// The first and the last particle that weigh in the point (`(1, 0)` when none does).
+    pub(super) fn ends(&self) -> (usize, usize) {
+        match self.len {
+            0 => (1, 0),
+            n => (self.index[0], self.index[n - 1]),
         }
     }
 

@@ -46,9 +46,12 @@ impl<P: Point, const K: usize> Samples<P, K> {
         (&self.points[span], self.power[span])
     }
 
-    /// Forgets every span's samples (the curve moved).
-    fn forget(&mut self) {
-        self.fresh = [false; K];
+    /// Forgets the samples of `count` spans from `first` on, counted round the `n` (they
+    /// were drawn again).
+    fn forget(&mut self, (first, count): (usize, usize), n: usize) {
+        for j in 0..count.min(n) {
+            self.fresh[(first + j) % n] = false;
+        }
     }
 }
 
@@ -87,7 +90,9 @@ impl<P: Point> Contacts<'_, P> {
     /// particles are now (each point a weighted sum of them) and pushed apart along the line
     /// between them, through both spans' particle weights (a particle both spans share moves
     /// by the difference), with its approach stopped and its sliding braked by Coulomb
-    /// friction. The curve is redrawn once, after the pass. Returns the deepest overlap it
+    /// friction. A curve of cubic spans has the spans each push moved redrawn after it (those
+    /// the two points' particles weigh in), and their samples taken again when next needed;
+    /// straight segments are redrawn once, after the pass. Returns the deepest overlap it
     /// found, or `None` when the redrawn curve left the range (the step's guard undoes it).
     pub(super) fn resolve_self<const K: usize>(
         &self,
@@ -116,25 +121,38 @@ impl<P: Point> Contacts<'_, P> {
             let apart = if closed { apart.min(n - apart) } else { apart };
             if apart >= 2 {
                 let parts = (&mut *pos, &mut *vel, inv_mass);
-                let depth = self.push_apart(parts, (h, friction), &*curve, (a, b), &mut samples);
-                // A curved span's search reads the curve: redrawn after each push. Straight
-                // spans are read from the particles, and the curve redrawn once at the end.
+                let (depth, moved) =
+                    self.push_apart(parts, (h, friction), &*curve, (a, b), &mut samples);
+                // A curved span's search reads the curve: the spans each point's particles
+                // weigh in are redrawn after each push. Straight spans are read from the
+                // particles, and the curve redrawn once at the end.
                 if depth > zero {
                     deepest = deepest.max(depth);
-                    if !(straight || curve.rebuild(pos)) {
-                        return None;
+                    if !straight {
+                        // Two points near each other along the curve redraw one run.
+                        let [(a0, a1), (b0, b1)] = moved;
+                        let runs = if a0.max(b0) <= a1.min(b1) + 4 {
+                            [Some((a0.min(b0), a1.max(b1))), None]
+                        } else {
+                            [Some((a0, a1)), Some((b0, b1))]
+                        };
+                        for ends in runs.into_iter().flatten() {
+                            let spans = curve.rebuild(pos, ends)?;
+                            samples.forget(spans, n);
+                        }
                     }
-                    samples.forget();
                 }
             }
             Some(())
         })?;
-        (!straight || deepest == zero || curve.rebuild(pos)).then_some(deepest)
+        (!straight || deepest == zero || curve.rebuild(pos, (0, K - 1)).is_some())
+            .then_some(deepest)
     }
 
     /// Pushes spans `a` and `b` of `curve` apart where they are nearer than twice the
     /// thickness ([`nearest`] from `samples`, or exactly for straight segments); returns by
-    /// how much they were (0 when apart or both spans are held).
+    /// how much they were (0 when apart or both spans are held) and the first and last
+    /// particle that weigh in each of the two points.
     fn push_apart<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
@@ -142,8 +160,8 @@ impl<P: Point> Contacts<'_, P> {
         curve: &impl DrawnSpans<P, K>,
         (a, b): (usize, usize),
         samples: &mut Samples<P, K>,
-    ) -> P::Scalar {
-        let zero = P::Scalar::ZERO;
+    ) -> (P::Scalar, [(usize, usize); 2]) {
+        let zero = (P::Scalar::ZERO, [(1, 0); 2]);
         let gap = self.thickness + self.thickness;
         let found = if curve.is_straight() {
             // Two segments between the particles: their nearest points exactly.
@@ -168,7 +186,8 @@ impl<P: Point> Contacts<'_, P> {
         let Some((u, v)) = found else {
             return zero;
         };
-        let g = Weights::of(curve, a, u).minus(&Weights::of(curve, b, v));
+        let (wa, wb) = (Weights::of(curve, a, u), Weights::of(curve, b, v));
+        let g = wa.minus(&wb);
         let d = point_of(pos, g.entries());
         let dist = d.length();
         // Two spans that cross exactly give no direction to part them: the next substep will.
@@ -184,7 +203,7 @@ impl<P: Point> Contacts<'_, P> {
         );
         // `None`: no free particle moves the pair (both spans held).
         match spread(pos, vel, inv_mass, g.entries(), parted) {
-            Some(_) => gap - dist,
+            Some(_) => (gap - dist, [wa.ends(), wb.ends()]),
             None => zero,
         }
     }

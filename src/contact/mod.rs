@@ -82,7 +82,7 @@ use crate::physics::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
 use collider::Collider;
 pub(crate) use drawn::DrawnSpans;
-use drawn::{Rebuilt, SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
+use drawn::{SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
@@ -179,11 +179,14 @@ impl<'a, P: Point> Contacts<'a, P> {
     ///
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
-    /// floor never has two spans closer than the diameter less 1% over 10 s; settled in that
-    /// pile, where about 40 pairs of spans are near each other, the floor and self-contact
-    /// together cost about 200 times the rope's bare step (0.5 ms a frame on the development
-    /// machine, where the search of 64 chord pairs a pair that this replaced cost 3 400
-    /// times): a heap of rope is costly, keep its particles few.
+    /// floor never has two spans closer than the diameter less 1% over 10 s (a guarantee of
+    /// this drop, not of every pile: started with its helix 0.1 µm wider along x, the same
+    /// drop brings two spans to 76% of the diameter, which the pair search does not find,
+    /// since more rounds change nothing; they still never pass through each other); settled
+    /// in that pile, where about 40 pairs of spans are near each other, the floor and
+    /// self-contact together cost about 200 times the rope's bare step (0.5 ms a frame on the
+    /// development machine, where the search of 64 chord pairs a pair that this replaced
+    /// cost 3 400 times): a heap of rope is costly, keep its particles few.
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -410,16 +413,14 @@ impl<'a, P: Point> Contacts<'a, P> {
             }
         };
         let resolve =
-            |pos: &mut [P; K], vel: &mut [P; K], w: &[P::Scalar; K], drawn: &mut Rebuilt<P, K>| {
+            |pos: &mut [P; K], vel: &mut [P; K], w: &[P::Scalar; K], drawn: &mut Smoothed<P, K>| {
                 if on_curve {
                     self.resolve_spans(pos, vel, w, times, drawn);
                 } else {
                     // The particles out of the colliders, the segments off each other.
                     self.rounds(|| {
                         self.resolve_particles(pos, vel, w, times);
-                        if !drawn.rebuild(pos) {
-                            return None;
-                        }
+                        drawn.rebuild(pos, (0, K - 1))?;
                         self.resolve_self(pos, vel, w, times.0, drawn)
                     });
                 }
@@ -431,13 +432,7 @@ impl<'a, P: Point> Contacts<'a, P> {
             } else {
                 Smoothed::open(smoothing, pos)
             };
-            if let Ok(curve) = curve {
-                let mut drawn = Rebuilt {
-                    curve,
-                    smoothing,
-                    closed,
-                    len: K,
-                };
+            if let Ok(mut drawn) = curve {
                 resolve(pos, vel, inv_mass, &mut drawn);
             }
             return;
@@ -460,14 +455,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             piece.0[..m].copy_from_slice(&pos[run.clone()]);
             piece.1[..m].copy_from_slice(&vel[run.clone()]);
             piece.2[..m].copy_from_slice(&inv_mass[run.clone()]);
-            let Ok(curve) = Smoothed::open_first(smoothing, &piece.0, m) else {
+            let Ok(mut drawn) = Smoothed::open_first(smoothing, &piece.0, m) else {
                 continue;
-            };
-            let mut drawn = Rebuilt {
-                curve,
-                smoothing,
-                closed: false,
-                len: m,
             };
             resolve(&mut piece.0, &mut piece.1, &piece.2, &mut drawn);
             pos[run.clone()].copy_from_slice(&piece.0[..m]);
@@ -476,7 +465,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
-    /// docs), rebuilding it after every correction, then off itself if self-contact is on.
+    /// docs), redrawing the spans each correction moved, then off itself if self-contact is on.
     pub(crate) fn resolve_spans<const K: usize>(
         &self,
         pos: &mut [P; K],
@@ -508,8 +497,10 @@ impl<'a, P: Point> Contacts<'a, P> {
         }
     }
 
-    /// Pushes a curve of spans drawn through `pos` out of every collider, rebuilding it after
-    /// every correction; `false` when it left the range (the step's guard undoes it).
+    /// Pushes a curve of spans drawn through `pos` out of every collider, redrawing after
+    /// every correction the spans its particles weigh in (7 of a cubic spline's, all of a
+    /// natural spline's or one Bézier's); `false` when it left the range (the step's guard
+    /// undoes it).
     fn resolve_colliders<const K: usize>(
         &self,
         pos: &mut [P; K],
@@ -543,9 +534,9 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
                     self.report(k, given, moved);
-                }
-                if !curve.rebuild(pos) {
-                    return false;
+                    if curve.rebuild(pos, weights.ends()).is_none() {
+                        return false;
+                    }
                 }
             }
         }

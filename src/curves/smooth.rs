@@ -326,9 +326,6 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         if method == Smoothing::NaturalSpline {
             natural_controls(&mut controls, true);
         }
-        let at = |i: usize| controls[i % K];
-        let sixth = P::Scalar::ratio(1, 6);
-        let third = P::Scalar::ratio(1, 3);
         let pieces = match method {
             Smoothing::Bezier => {
                 return Err(invalid(
@@ -336,36 +333,82 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
                     "a spline or the polyline (one Bezier cannot close)",
                 ));
             }
-            Smoothing::Polyline => Pieces::Straight(
-                core::array::from_fn(|i| Bezier::new_unchecked([at(i), at(i + 1)])),
-                K,
-            ),
-            Smoothing::CatmullRom => Pieces::Cubic(
-                core::array::from_fn(|i| {
-                    let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
-                    Bezier::new_unchecked([a, a + (b - prev) * sixth, b - (next - a) * sixth, b])
-                }),
-                K,
-            ),
-            Smoothing::BSpline | Smoothing::NaturalSpline => Pieces::Cubic(
-                core::array::from_fn(|i| {
-                    let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
-                    let step = b - a;
-                    Bezier::new_unchecked([
-                        knot(prev, a, b),
-                        a + step * third,
-                        b - step * third,
-                        knot(a, b, next),
-                    ])
-                }),
-                K,
-            ),
+            Smoothing::Polyline => {
+                Pieces::Straight(core::array::from_fn(|i| ring_segment(&controls, i)), K)
+            }
+            _ => {
+                let f = Fractions::new();
+                Pieces::Cubic(
+                    core::array::from_fn(|i| ring_span(method, &controls, i, f)),
+                    K,
+                )
+            }
         };
         Ok(Smoothed {
             pieces,
             method,
             len: K,
         })
+    }
+
+    /// Draws again, after particles `lo..=hi` of those it is drawn through moved, the spans
+    /// they weigh in (a cubic spline's span weighs the particles from one before it to two
+    /// after, a segment its two ends), checking only the moved particles; one Bézier and
+    /// the natural spline, whose every span each particle weighs in, are drawn again whole.
+    /// Returns the spans drawn again, `(first, count)`, counted round a loop: the same
+    /// spans as drawing it again whole, at the cost of those.
+    ///
+    /// # Errors
+    /// As [`open`](Self::open), for the moved particles.
+    pub(crate) fn redraw(
+        &mut self,
+        particles: &[P; K],
+        (lo, hi): (usize, usize),
+    ) -> Result<(usize, usize), Error> {
+        let spans = self.span_count();
+        let closed = spans == K;
+        // How many spans before the first moved particle and after the last it weighs in.
+        let (before, after) = match self.method {
+            Smoothing::Polyline => (1, 0),
+            Smoothing::BSpline | Smoothing::CatmullRom => (2, 1),
+            Smoothing::Bezier | Smoothing::NaturalSpline => (K, K),
+        };
+        let count = (hi.min(K - 1) + 1).saturating_sub(lo) + before + after;
+        if count >= spans || lo > hi || hi >= self.len {
+            *self = if closed {
+                Self::ring(self.method, particles)
+            } else {
+                Self::open_first(self.method, particles, self.len)
+            }?;
+            return Ok((0, spans));
+        }
+        check_points(&particles[lo..=hi], "particles")?;
+        let (first, count) = if closed {
+            ((lo + K - before) % K, count)
+        } else {
+            let first = lo.saturating_sub(before);
+            (first, (hi + after).min(spans - 1) + 1 - first)
+        };
+        let (method, n, f) = (self.method, self.len, Fractions::new());
+        let index = |j: usize| (first + j) % spans;
+        match &mut self.pieces {
+            Pieces::Cubic(s, _) => (0..count).map(index).for_each(|i| {
+                s[i] = match (closed, method) {
+                    (true, _) => ring_span(method, particles, i, f),
+                    (false, Smoothing::CatmullRom) => catmull_rom_span(particles, n, i, f),
+                    _ => bspline_span(particles, n, i, f),
+                };
+            }),
+            Pieces::Straight(s, _) => (0..count).map(index).for_each(|i| {
+                s[i] = if closed {
+                    ring_segment(particles, i)
+                } else {
+                    segment(particles, n, i)
+                };
+            }),
+            Pieces::Whole(_) => {}
+        }
+        Ok((first, count))
     }
 
     /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
@@ -412,6 +455,11 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             Pieces::Cubic(spans, count) => &spans[..*count],
             _ => &[],
         }
+    }
+
+    /// The smoothing that draws it.
+    pub(crate) fn method(&self) -> Smoothing {
+        self.method
     }
 
     /// Number of spans: 1 for one Bézier, `K - 1` open, `K` closed.
@@ -511,8 +559,37 @@ fn knot<P: Point>(p: P, q: P, r: P) -> P {
 /// The `n - 1` B-spline spans of the first `n` of an open row (later entries unused);
 /// phantom ends reflected through the end particles clamp the curve to them.
 fn bspline_spans<P: Point, const K: usize>(d: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
-    let third = P::Scalar::ratio(1, 3);
-    let two_thirds = P::Scalar::ratio(2, 3);
+    let f = Fractions::new();
+    core::array::from_fn(|i| bspline_span(d, n, i, f))
+}
+
+/// Thirds and a sixth, taken once for a curve's spans (in `Q16` each is a division).
+#[derive(Clone, Copy)]
+struct Fractions<S> {
+    third: S,
+    two_thirds: S,
+    sixth: S,
+}
+
+impl<S: Scalar> Fractions<S> {
+    fn new() -> Self {
+        Fractions {
+            third: S::ratio(1, 3),
+            two_thirds: S::ratio(2, 3),
+            sixth: S::ratio(1, 6),
+        }
+    }
+}
+
+/// Span `i` of [`bspline_spans`].
+#[inline]
+fn bspline_span<P: Point, const K: usize>(
+    d: &[P; K],
+    n: usize,
+    i: usize,
+    f: Fractions<P::Scalar>,
+) -> Bezier<P, 4> {
+    let (third, two_thirds) = (f.third, f.two_thirds);
     let knot_at = |i: usize| -> P {
         if i == 0 || i + 1 >= n {
             d[i]
@@ -520,47 +597,90 @@ fn bspline_spans<P: Point, const K: usize>(d: &[P; K], n: usize) -> [Bezier<P, 4
             knot(d[i - 1], d[i], d[i + 1])
         }
     };
-    core::array::from_fn(|i| {
-        if i + 1 >= n {
-            return Bezier::new_unchecked([d[n - 1]; 4]);
-        }
-        let step = d[i + 1] - d[i];
-        Bezier::new_unchecked([
-            knot_at(i),
-            d[i] + step * third,
-            d[i] + step * two_thirds,
-            knot_at(i + 1),
-        ])
-    })
+    if i + 1 >= n {
+        return Bezier::new_unchecked([d[n - 1]; 4]);
+    }
+    let step = d[i + 1] - d[i];
+    Bezier::new_unchecked([
+        knot_at(i),
+        d[i] + step * third,
+        d[i] + step * two_thirds,
+        knot_at(i + 1),
+    ])
 }
 
 /// The `n - 1` Catmull-Rom spans of the first `n` of an open row (later entries unused).
 fn catmull_rom_spans<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 4>; K] {
-    let sixth = P::Scalar::ratio(1, 6);
-    let third = P::Scalar::ratio(1, 3);
-    core::array::from_fn(|i| {
-        if i + 1 >= n {
-            return Bezier::new_unchecked([p[n - 1]; 4]);
-        }
-        // Tangent at a particle: (next - previous) / 2; a phantom end reflected through
-        // the last particle makes it (next - this) at the ends.
-        let out_handle = if i == 0 {
-            (p[1] - p[0]) * third
-        } else {
-            (p[i + 1] - p[i - 1]) * sixth
-        };
-        let in_handle = if i + 2 >= n {
-            (p[i + 1] - p[i]) * third
-        } else {
-            (p[i + 2] - p[i]) * sixth
-        };
-        Bezier::new_unchecked([p[i], p[i] + out_handle, p[i + 1] - in_handle, p[i + 1]])
-    })
+    let f = Fractions::new();
+    core::array::from_fn(|i| catmull_rom_span(p, n, i, f))
+}
+
+/// Span `i` of [`catmull_rom_spans`].
+#[inline]
+fn catmull_rom_span<P: Point, const K: usize>(
+    p: &[P; K],
+    n: usize,
+    i: usize,
+    f: Fractions<P::Scalar>,
+) -> Bezier<P, 4> {
+    let (sixth, third) = (f.sixth, f.third);
+    if i + 1 >= n {
+        return Bezier::new_unchecked([p[n - 1]; 4]);
+    }
+    // Tangent at a particle: (next - previous) / 2; a phantom end reflected through
+    // the last particle makes it (next - this) at the ends.
+    let out_handle = if i == 0 {
+        (p[1] - p[0]) * third
+    } else {
+        (p[i + 1] - p[i - 1]) * sixth
+    };
+    let in_handle = if i + 2 >= n {
+        (p[i + 1] - p[i]) * third
+    } else {
+        (p[i + 2] - p[i]) * sixth
+    };
+    Bezier::new_unchecked([p[i], p[i] + out_handle, p[i + 1] - in_handle, p[i + 1]])
+}
+
+/// Span `i` of the closed curve `method` draws through the ring `controls` (the natural
+/// spline's control points, the particles for the others): Catmull-Rom's, or the
+/// B-spline's.
+#[inline]
+fn ring_span<P: Point, const K: usize>(
+    method: Smoothing,
+    controls: &[P; K],
+    i: usize,
+    f: Fractions<P::Scalar>,
+) -> Bezier<P, 4> {
+    let at = |i: usize| controls[i % K];
+    let (prev, a, b, next) = (at(i + K - 1), at(i), at(i + 1), at(i + 2));
+    if method == Smoothing::CatmullRom {
+        return Bezier::new_unchecked([a, a + (b - prev) * f.sixth, b - (next - a) * f.sixth, b]);
+    }
+    let (third, step) = (f.third, b - a);
+    Bezier::new_unchecked([
+        knot(prev, a, b),
+        a + step * third,
+        b - step * third,
+        knot(a, b, next),
+    ])
 }
 
 /// The `n - 1` straight segments of the first `n` of an open row (later entries unused).
 fn segments<P: Point, const K: usize>(p: &[P; K], n: usize) -> [Bezier<P, 2>; K] {
-    core::array::from_fn(|i| Bezier::new_unchecked([p[i], p[(i + 1).min(n - 1)]]))
+    core::array::from_fn(|i| segment(p, n, i))
+}
+
+/// Segment `i` of [`segments`].
+#[inline]
+fn segment<P: Point, const K: usize>(p: &[P; K], n: usize, i: usize) -> Bezier<P, 2> {
+    Bezier::new_unchecked([p[i], p[(i + 1).min(n - 1)]])
+}
+
+/// Segment `i` of the closed polyline through the ring `p`.
+#[inline]
+fn ring_segment<P: Point, const K: usize>(p: &[P; K], i: usize) -> Bezier<P, 2> {
+    Bezier::new_unchecked([p[i % K], p[(i + 1) % K]])
 }
 
 #[cfg(all(test, dunas_floats))]
@@ -708,6 +828,75 @@ mod tests {
             Smoothed::closed(Smoothing::Bezier, &ring),
             Err(Error::InvalidParameter { .. })
         ));
+    }
+
+    /// Redrawing the spans a run of moved particles weighs in gives the curve drawn whole
+    /// from the moved particles, for every method, open, closed and a piece of a row, and
+    /// names every span that changed.
+    #[test]
+    fn a_redraw_is_the_curve_drawn_again() {
+        let methods = [
+            Smoothing::Bezier,
+            Smoothing::BSpline,
+            Smoothing::CatmullRom,
+            Smoothing::NaturalSpline,
+            Smoothing::Polyline,
+        ];
+        let row: [Vec2<f64>; 9] = core::array::from_fn(|i| {
+            let x = i as f64;
+            Vec2::new(x, (x * 1.3).sin())
+        });
+        for method in methods {
+            for (lo, hi) in [
+                (0, 0),
+                (0, 1),
+                (3, 4),
+                (4, 4),
+                (7, 8),
+                (8, 8),
+                (2, 6),
+                (0, 8),
+            ] {
+                let mut moved = row;
+                for p in &mut moved[lo..=hi] {
+                    *p += Vec2::new(0.25, -0.5);
+                }
+                for shape in ["open", "closed", "piece"] {
+                    let build = |p: &[Vec2<f64>; 9]| match shape {
+                        "open" => Smoothed::open(method, p),
+                        "closed" => Smoothed::ring(method, p),
+                        _ => Smoothed::open_first(method, p, 6),
+                    };
+                    let (Ok(mut curve), Ok(whole)) = (build(&row), build(&moved)) else {
+                        continue;
+                    };
+                    let len = curve.len;
+                    let (lo, hi) = (lo.min(len - 1), hi.min(len - 1));
+                    let mut piece = row;
+                    piece[lo..=hi].copy_from_slice(&moved[lo..=hi]);
+                    let Ok(whole) = (if len < 9 { build(&piece) } else { Ok(whole) }) else {
+                        continue;
+                    };
+                    let (first, count) = curve.redraw(&piece, (lo, hi)).unwrap();
+                    let before = build(&row).unwrap();
+                    let spans = curve.span_count();
+                    assert_eq!(spans, whole.span_count());
+                    for span in 0..spans {
+                        assert_eq!(
+                            curve.span_points(span),
+                            whole.span_points(span),
+                            "{method:?} {shape} moved {lo}..={hi}: span {span}"
+                        );
+                        let redrawn = (0..count).any(|j| (first + j) % spans == span);
+                        let changed = before.span_points(span) != curve.span_points(span);
+                        assert!(
+                            redrawn || !changed,
+                            "{method:?} {shape}: span {span} changed"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -89,8 +89,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
             }
         }
     }
-    fn rebuild(&mut self, pos: &[P; K]) -> bool {
+    /// Draws every span again (each span's ends are its neighbours' midpoints).
+    fn rebuild(&mut self, pos: &[P; K], _: (usize, usize)) -> Option<(usize, usize)> {
         self.redraw(pos);
-        true
+        Some((0, K - 3))
     }
 }

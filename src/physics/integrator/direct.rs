@@ -86,7 +86,7 @@ use core::cell::Cell;
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 98 600 on average, 132 800 measured and 269 100 at the defaults (along conjugate directions). Memory: the factor, the
+/// takes 98 700 on average, 132 800 measured and 269 100 at the defaults (along conjugate directions). Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -125,7 +125,7 @@ pub struct DirectSprings {
     /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
     /// over the springs (a square root and a division each) after each iteration: the
     /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 132 800 instructions
-    /// a frame measured and 98 600 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
+    /// a frame measured and 98 700 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
     /// solve takes all its `iterations` and reports `converged` with a residual of 0.
     pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
