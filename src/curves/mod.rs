@@ -9,4 +9,5 @@ pub(crate) mod natural;
 pub mod patch;
 pub mod sampler;
 pub mod smooth;
+mod spans;
 pub mod surface;
