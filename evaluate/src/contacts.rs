@@ -246,8 +246,8 @@ pub fn run(run: &mut Run) {
             )
             .replace(" (fastest NaN×;", " (mean of its frames;"),
             state.both <= target * state.step,
-            "every substep searches each pair of spans whose boxes meet (samples, then \
-             Gauss-Newton) and redraws the spans each push moved, in rounds until no overlap \
+            "every substep searches each pair of spans whose boxes meet (exact chord distances, then \
+             Newton steps) and redraws the spans each push moved, in rounds until no overlap \
              is over 1% of the diameter",
         );
     }

@@ -6,44 +6,73 @@ use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
 
-/// Each span's points at [`SAMPLES`] + 1 even steps and, in floating point, its cubic in
-/// power form, taken when a pair first needs them and kept until the curve moves: a span's
-/// samples serve all its pairs.
-struct Samples<P, const K: usize> {
-    points: [[P; SAMPLES + 1]; K],
-    power: [Option<Power<P>>; K],
+/// What the pair search reads of one span, taken when a pair first needs it and kept until
+/// the curve moves: a span's samples serve all its pairs.
+#[derive(Clone, Copy)]
+struct Sampled<P: Point> {
+    /// Its points at [`SAMPLES`] + 1 even steps: the ends of its chords.
+    points: [P; SAMPLES + 1],
+    /// How far it strays from those chords at most: `3/(4·SAMPLES²)` of its control points'
+    /// largest second difference (a cubic's `|p''| / 6`), the bound of linear interpolation.
+    bend: P::Scalar,
+    /// Half its longest chord.
+    half: P::Scalar,
+    /// Its second derivative, `p''(t) = second[0] + t·second[1]`.
+    second: [P; 2],
+    /// In floating point, its cubic in power form.
+    power: Option<Power<P>>,
+}
+
+/// Every span's [`Sampled`], and whether it is up to date.
+struct Samples<P: Point, const K: usize> {
+    spans: [Sampled<P>; K],
     fresh: [bool; K],
 }
 
 impl<P: Point, const K: usize> Samples<P, K> {
     fn new() -> Self {
+        let zero = P::Scalar::ZERO;
+        let empty = Sampled {
+            points: [P::default(); SAMPLES + 1],
+            bend: zero,
+            half: zero,
+            second: [P::default(); 2],
+            power: None,
+        };
         Samples {
-            points: [[P::default(); SAMPLES + 1]; K],
-            power: [None; K],
+            spans: [empty; K],
             fresh: [false; K],
         }
     }
 
-    /// Span `span`'s samples on `curve`, and its power form when it has one.
-    fn of(
-        &mut self,
-        curve: &impl DrawnSpans<P, K>,
-        span: usize,
-    ) -> (&[P; SAMPLES + 1], Option<Power<P>>) {
-        if !self.fresh[span] {
-            // Fixed point keeps de Casteljau's convex combinations: the power form's
-            // coefficients can leave the format's range.
-            let power = curve
-                .cubic(span)
-                .filter(|_| !P::Scalar::FIXED_POINT)
-                .map(Power::of);
-            for (k, x) in self.points[span].iter_mut().enumerate() {
-                let t = P::Scalar::ratio(k as u32, SAMPLES as u32);
-                *x = power.map_or_else(|| curve.point(span, t), |c| c.at(t));
-            }
-            (self.power[span], self.fresh[span]) = (power, true);
+    /// Brings span `span` of `curve` up to date. A span that is no cubic (one Bézier through
+    /// every particle: a single span, which pairs with none) counts as unbent.
+    fn take(&mut self, curve: &impl DrawnSpans<P, K>, span: usize) {
+        if self.fresh[span] {
+            return;
         }
-        (&self.points[span], self.power[span])
+        let cubic = curve.cubic(span);
+        let s = &mut self.spans[span];
+        // Fixed point keeps de Casteljau's convex combinations: the power form's
+        // coefficients can leave the format's range.
+        s.power = cubic.filter(|_| !P::Scalar::FIXED_POINT).map(Power::of);
+        for (k, x) in s.points.iter_mut().enumerate() {
+            let t = P::Scalar::ratio(k as u32, SAMPLES as u32);
+            *x = s.power.map_or_else(|| curve.point(span, t), |c| c.at(t));
+        }
+        let (d0, d1) = cubic.map_or((P::default(), P::default()), |[p0, p1, p2, p3]| {
+            (p2 - p1 - (p1 - p0), p3 - p2 - (p2 - p1))
+        });
+        let six = P::Scalar::from_i16(6);
+        s.second = [d0 * six, (d1 - d0) * six];
+        s.bend = d0.length().max(d1.length()) * P::Scalar::ratio(3, (4 * SAMPLES * SAMPLES) as u32);
+        let longest = s
+            .points
+            .windows(2)
+            .map(|c| (c[1] - c[0]).dot(c[1] - c[0]))
+            .fold(P::Scalar::ZERO, P::Scalar::max);
+        s.half = longest.sqrt() * P::Scalar::ratio(1, 2);
+        self.fresh[span] = true;
     }
 
     /// Forgets the samples of `count` spans from `first` on, counted round the `n` (they
@@ -114,7 +143,9 @@ impl<P: Point> Contacts<'_, P> {
             *o = span;
         }
         let closed = curve.is_closed();
-        let (mut samples, straight) = (Samples::new(), curve.is_straight());
+        // Straight segments are measured from the particles: no samples.
+        let straight = curve.is_straight();
+        let mut samples = (!straight).then(Samples::new);
         let mut deepest = zero;
         sweep(&boxes[..n], &mut order[..n], |a, b| {
             let apart = a.abs_diff(b);
@@ -122,7 +153,7 @@ impl<P: Point> Contacts<'_, P> {
             if apart >= 2 {
                 let parts = (&mut *pos, &mut *vel, inv_mass);
                 let (depth, moved) =
-                    self.push_apart(parts, (h, friction), &*curve, (a, b), &mut samples);
+                    self.push_apart(parts, (h, friction), &*curve, (a, b), samples.as_mut());
                 // A curved span's search reads the curve: the spans each point's particles
                 // weigh in are redrawn after each push. Straight spans are read from the
                 // particles, and the curve redrawn once at the end.
@@ -138,7 +169,9 @@ impl<P: Point> Contacts<'_, P> {
                         };
                         for ends in runs.into_iter().flatten() {
                             let spans = curve.rebuild(pos, ends)?;
-                            samples.forget(spans, n);
+                            if let Some(samples) = samples.as_mut() {
+                                samples.forget(spans, n);
+                            }
                         }
                     }
                 }
@@ -150,38 +183,39 @@ impl<P: Point> Contacts<'_, P> {
     }
 
     /// Pushes spans `a` and `b` of `curve` apart where they are nearer than twice the
-    /// thickness ([`nearest`] from `samples`, or exactly for straight segments); returns by
-    /// how much they were (0 when apart or both spans are held) and the first and last
-    /// particle that weigh in each of the two points.
+    /// thickness ([`nearest`] from `samples`; without them, exactly between the straight
+    /// segments of a polyline); returns by how much they were (0 when apart or both spans
+    /// are held) and the first and last particle that weigh in each of the two points.
     fn push_apart<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         (h, friction): (P::Scalar, P::Scalar),
         curve: &impl DrawnSpans<P, K>,
         (a, b): (usize, usize),
-        samples: &mut Samples<P, K>,
+        samples: Option<&mut Samples<P, K>>,
     ) -> (P::Scalar, [(usize, usize); 2]) {
         let zero = (P::Scalar::ZERO, [(1, 0); 2]);
         let gap = self.thickness + self.thickness;
-        let found = if curve.is_straight() {
+        let found = if let Some(samples) = samples {
+            samples.take(curve, a);
+            samples.take(curve, b);
+            let (sa, sb) = (&samples.spans[a], &samples.spans[b]);
+            let point =
+                |s: &Sampled<P>, span, t| s.power.map_or_else(|| curve.point(span, t), |c| c.at(t));
+            let slope = |s: &Sampled<P>, span, t| {
+                s.power
+                    .map_or_else(|| curve.tangent(span, t), |c| c.slope(t))
+            };
+            nearest(
+                (sa, |u| point(sa, a, u), |u| slope(sa, a, u)),
+                (sb, |v| point(sb, b, v), |v| slope(sb, b, v)),
+                gap,
+            )
+        } else {
             // Two segments between the particles: their nearest points exactly.
             let ends = |span: usize| (pos[span], pos[(span + 1) % K]);
             let (u, v, _) = segments_nearest(ends(a), ends(b));
             Some((u, v))
-        } else {
-            let (pa, ca) = samples.of(curve, a);
-            let pa = *pa;
-            let (pb, cb) = samples.of(curve, b);
-            let point =
-                |c: Option<Power<P>>, span, t| c.map_or_else(|| curve.point(span, t), |c| c.at(t));
-            let slope = |c: Option<Power<P>>, span, t| {
-                c.map_or_else(|| curve.tangent(span, t), |c| c.slope(t))
-            };
-            nearest(
-                (&pa, |u| point(ca, a, u), |u| slope(ca, a, u)),
-                (pb, |v| point(cb, b, v), |v| slope(cb, b, v)),
-                gap,
-            )
         };
         let Some((u, v)) = found else {
             return zero;
@@ -477,89 +511,198 @@ fn nearest_on_cells<P: Point>(
 }
 
 /// The parameters `(u, v)` in `[0, 1]²` of the nearest points of two spans, `a(u)` and
-/// `b(v)` with tangents `ta` and `tb`, from their points `pa` and `pb` at [`SAMPLES`] + 1
-/// even steps: the nearest sample pair (squared distances: no root) seeds at most
-/// [`NEWTON_STEPS`] Gauss-Newton steps on `a(u) − b(v)` with the spans' exact tangents,
-/// stopped once a step moves less than 1/4096 of a span; the nearest point pair met wins.
-/// `None`, without the steps, when no sample pair comes within `gap` plus twice the longest
-/// step between samples: the spans are apart. Cost: `(SAMPLES + 1)²` squared distances, and 2
-/// points and 2 tangents a step.
-fn nearest<P: Point, const M: usize>(
-    (pa, a, ta): (&[P; M], impl Fn(P::Scalar) -> P, impl Fn(P::Scalar) -> P),
-    (pb, b, tb): (&[P; M], impl Fn(P::Scalar) -> P, impl Fn(P::Scalar) -> P),
+/// `b(v)` with tangents `ta` and `tb`, sampled in `sa` and `sb`. Each span lies within its
+/// `bend` of the chords between its samples, so the chords' exact distances (segment to
+/// segment; a chord pair whose nearest corners are too far for it to matter is skipped
+/// unmeasured) bound the spans' within the two bends. `None`, without more, when no chord
+/// pair comes within `gap` plus both bends: the spans are apart. Otherwise the nearest chord
+/// pair seeds [`refine`], and so does the nearest pair of chords that are no neighbours of
+/// those, when it could still hold a nearer point pair (two arcs near each other in two
+/// places); the nearest result wins. Cost: `(SAMPLES + 1)²` squared distances, up to
+/// `SAMPLES²` segment distances, and 2 or 4 points and tangents a Newton step.
+fn nearest<P: Point>(
+    (sa, a, ta): (
+        &Sampled<P>,
+        impl Fn(P::Scalar) -> P,
+        impl Fn(P::Scalar) -> P,
+    ),
+    (sb, b, tb): (
+        &Sampled<P>,
+        impl Fn(P::Scalar) -> P,
+        impl Fn(P::Scalar) -> P,
+    ),
     gap: P::Scalar,
 ) -> Option<(P::Scalar, P::Scalar)> {
-    let zero = P::Scalar::ZERO;
-    let at = |k: usize| P::Scalar::ratio(k as u32, (M - 1) as u32);
     let d2 = |p: P| p.dot(p);
-    let longest2 = pa
-        .windows(2)
-        .chain(pb.windows(2))
-        .map(|c| d2(c[1] - c[0]))
-        .fold(zero, P::Scalar::max);
-    let (mut best, mut i, mut j) = (d2(pa[0] - pb[0]), 0, 0);
-    for (k, &x) in pa.iter().enumerate() {
-        for (l, &y) in pb.iter().enumerate() {
-            let d = d2(x - y);
-            if d < best {
-                (best, i, j) = (d, k, l);
+    let (pa, pb) = (&sa.points, &sb.points);
+    let slack = sa.bend + sb.bend;
+    let halves = sa.half + sb.half;
+    let corner: [[P::Scalar; SAMPLES + 1]; SAMPLES + 1] =
+        core::array::from_fn(|k| core::array::from_fn(|l| d2(pa[k] - pb[l])));
+    // Each chord pair's squared distance and nearest parameters, once measured.
+    let mut chords = [[None; SAMPLES]; SAMPLES];
+    let mut best: Option<(P::Scalar, usize, usize)> = None;
+    // Farther than this, a chord pair neither touches nor beats the nearest by the bends.
+    let mut limit = gap + slack;
+    for i in 0..SAMPLES {
+        for j in 0..SAMPLES {
+            // Every point of a chord is within half of it from one of its ends.
+            let near = corner[i][j]
+                .min(corner[i + 1][j])
+                .min(corner[i][j + 1])
+                .min(corner[i + 1][j + 1]);
+            let reach = limit + halves;
+            if near >= reach * reach {
+                continue;
+            }
+            let (s, t, d) = segments_nearest((pa[i], pa[i + 1]), (pb[j], pb[j + 1]));
+            chords[i][j] = Some((d, s, t));
+            if best.is_none_or(|(kept, _, _)| d < kept) {
+                best = Some((d, i, j));
+                limit = limit.min(d.sqrt() + slack);
             }
         }
     }
-    // A point of a span is within half the arc between two samples of one of them, and an
-    // arc that bends is longer than its chord: twice the longest chord bounds both halves.
-    let reach = gap + longest2.sqrt() * P::Scalar::from_i16(2);
-    if best >= reach * reach {
+    let (d, i, j) = best?;
+    let far = gap + slack;
+    if d >= far * far {
         return None;
     }
-    let (mut u, mut v) = (at(i), at(j));
-    let mut found = (best, u, v);
-    let small = P::Scalar::ratio(1, 4096);
-    for _ in 0..NEWTON_STEPS {
-        let Some((nu, nv)) = newton_step(a(u) - b(v), (ta(u), tb(v)), (u, v)) else {
-            break;
-        };
-        let moved = (nu - u).abs().max((nv - v).abs());
-        (u, v) = (nu, nv);
-        let d = d2(a(u) - b(v));
-        if d < found.0 {
-            found = (d, u, v);
-        }
-        if moved < small {
-            break;
+    let param = |k: usize, s: P::Scalar| {
+        (P::Scalar::from_i16(k as i16) + s) / P::Scalar::from_i16(SAMPLES as i16)
+    };
+    let seed = |k: usize, l: usize| chords[k][l].map(|(_, s, t)| (param(k, s), param(l, t)));
+    let (sa2, sb2) = (sa.second, sb.second);
+    let a = (&a, &ta, &|u| sa2[0] + sa2[1] * u);
+    let b = (&b, &tb, &|v| sb2[0] + sb2[1] * v);
+    let (found, mut u, mut v) = refine(a, b, seed(i, j)?);
+    // The nearest chord pair that is no neighbour of the first, refined when its bound could
+    // beat what the first found.
+    let mut other: Option<(P::Scalar, usize, usize)> = None;
+    for (k, row) in chords.iter().enumerate() {
+        for (l, c) in row.iter().enumerate() {
+            if let Some((dc, _, _)) = *c
+                && (k.abs_diff(i) >= 2 || l.abs_diff(j) >= 2)
+                && other.is_none_or(|(kept, _, _)| dc < kept)
+            {
+                other = Some((dc, k, l));
+            }
         }
     }
-    Some((found.1, found.2))
+    if let Some((dc, k, l)) = other {
+        let bound = dc.sqrt() - slack;
+        if let Some(start) =
+            seed(k, l).filter(|_| bound <= P::Scalar::ZERO || bound * bound < found)
+        {
+            let (e, nu, nv) = refine(a, b, start);
+            if e < found {
+                (u, v) = (nu, nv);
+            }
+        }
+    }
+    Some((u, v))
 }
 
-/// One Gauss-Newton step on `f = a(u) − b(v)` with the spans' tangents `(ta, tb)` there,
-/// towards their nearest points, clamped to `[0, 1]²` (one step on each parameter alone
-/// where the spans lie side by side); `None` when a tangent vanishes.
-fn newton_step<P: Point>(
-    f: P,
-    (ta, tb): (P, P),
-    (u, v): (P::Scalar, P::Scalar),
-) -> Option<(P::Scalar, P::Scalar)> {
+/// Newton steps from `(u, v)` on half the squared distance between the points of two spans,
+/// each given as its point, tangent and second derivative at a parameter: the full Hessian
+/// (curvature terms included, so two arcs side by side or bending away converge where
+/// Gauss-Newton stalls), its least eigenvalue raised to 1/1024 of the tangents' squared
+/// lengths, a parameter held at `[0, 1]`'s bound where the slope pushes out of it, the rest
+/// clamped to it. A step that does not bring the points nearer is cut to the least of the
+/// parabola through the distance there, at the start and the start's slope (to between
+/// 1/10 and 1/2 of it), up to [`CUTS`] times. At most [`NEWTON_STEPS`] steps, stopped once
+/// one moves less than 1/4096 of a span. Returns the squared distance and the parameters of
+/// the nearest pair met.
+fn refine<P: Point>(
+    (a, ta, sa): (
+        &impl Fn(P::Scalar) -> P,
+        &impl Fn(P::Scalar) -> P,
+        &impl Fn(P::Scalar) -> P,
+    ),
+    (b, tb, sb): (
+        &impl Fn(P::Scalar) -> P,
+        &impl Fn(P::Scalar) -> P,
+        &impl Fn(P::Scalar) -> P,
+    ),
+    (mut u, mut v): (P::Scalar, P::Scalar),
+) -> (P::Scalar, P::Scalar, P::Scalar) {
     let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
-    let (aa, bb, ab) = (ta.dot(ta), tb.dot(tb), ta.dot(tb));
-    let (r1, r2) = (-ta.dot(f), tb.dot(f));
-    let det = aa * bb - ab * ab;
-    let (nu, nv) = if det > aa * bb * P::Scalar::ratio(1, 1024) {
-        (u + (r1 * bb + ab * r2) / det, v + (aa * r2 + ab * r1) / det)
-    } else if aa > zero && bb > zero {
-        // Side by side: no one nearest pair; slide each point to its nearest on the other.
-        (u + r1 / aa, v + r2 / bb)
-    } else {
-        return None;
-    };
+    let half = P::Scalar::ratio(1, 2);
     let clamp = |x: P::Scalar| x.max(zero).min(one);
-    Some((clamp(nu), clamp(nv)))
+    let small = P::Scalar::ratio(1, 4096);
+    let mut f = a(u) - b(v);
+    let mut e = f.dot(f);
+    'steps: for _ in 0..NEWTON_STEPS {
+        let (da, db) = (ta(u), tb(v));
+        let (aa, bb) = (da.dot(da), db.dot(db));
+        let (gu, gv) = (f.dot(da), -f.dot(db));
+        let (mut huu, mut hvv, huv) = (aa + f.dot(sa(u)), bb - f.dot(sb(v)), -da.dot(db));
+        // Raise the least eigenvalue of [[huu, huv], [huv, hvv]] to a floor: a descent step.
+        let spread = (huu - hvv) * half;
+        let least = (huu + hvv) * half - (spread * spread + huv * huv).sqrt();
+        let raise = ((aa + bb) * P::Scalar::ratio(1, 1024) - least).max(zero);
+        (huu, hvv) = (huu + raise, hvv + raise);
+        // A parameter at a bound stays there when the slope, or the step, pushes out of it.
+        let out = |x: P::Scalar, d: P::Scalar| (x <= zero && d < zero) || (x >= one && d > zero);
+        let mut held = (out(u, -gu), out(v, -gv));
+        let det = huu * hvv - huv * huv;
+        let mut free = None;
+        if held == (false, false) && det > zero {
+            let (du, dv) = ((huv * gv - hvv * gu) / det, (huv * gu - huu * gv) / det);
+            held = (out(u, du), out(v, dv));
+            free = Some((du, dv)).filter(|_| held == (false, false));
+        }
+        let (mut du, mut dv) = match (free, held) {
+            (Some(step), _) => step,
+            (None, (true, false)) if hvv > zero => (zero, -gv / hvv),
+            (None, (false, true)) if huu > zero => (-gu / huu, zero),
+            _ => break,
+        };
+        // Shortened to stay in the box: still a descent direction, as a clamped one is not.
+        let mut scale = one;
+        for (x, d) in [(u, du), (v, dv)] {
+            if x + d > one {
+                scale = scale.min((one - x) / d);
+            } else if x + d < zero {
+                scale = scale.min(x / -d);
+            }
+        }
+        (du, dv) = (du * scale, dv * scale);
+        for _ in 0..=CUTS {
+            let (nu, nv) = (clamp(u + du), clamp(v + dv));
+            let nf = a(nu) - b(nv);
+            let ne = nf.dot(nf);
+            let (su, sv) = (nu - u, nv - v);
+            if ne < e {
+                (u, v, f, e) = (nu, nv, nf, ne);
+                if su.abs().max(sv.abs()) < small {
+                    break 'steps;
+                }
+                continue 'steps;
+            }
+            // The squared distance along the step: `e + slope·s + bend·s²`, `s` in [0, 1].
+            let slope = (gu * su + gv * sv) * P::Scalar::from_i16(2);
+            let bend = ne - e - slope;
+            let cut = if slope < zero && bend > zero {
+                (-slope / (bend + bend))
+                    .max(P::Scalar::ratio(1, 10))
+                    .min(half)
+            } else {
+                half
+            };
+            (du, dv) = (su * cut, sv * cut);
+        }
+        break;
+    }
+    (e, u, v)
 }
 
 /// Steps a span is sampled in to seed the search for its nearest points to another.
 const SAMPLES: usize = 4;
-/// Gauss-Newton steps from the nearest sample pair at most.
-const NEWTON_STEPS: usize = 4;
+/// Newton steps from a seed at most.
+const NEWTON_STEPS: usize = 8;
+/// Times a Newton step that does not bring the points nearer is cut at most.
+const CUTS: usize = 4;
 /// The nearest cell-sample pairs the surface search starts from.
 const SEEDS: usize = 2;
 /// Rounds of the pattern search on two surface cells at most: 8 halvings and the moves

@@ -30,8 +30,8 @@
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
 //!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
-//!   the particles (`docs/summary.md` (g): 2 668 against 743 ns a frame for an 8-particle
-//!   rope on a peg).
+//!   the particles (`docs/summary.md` (g): 1 449 against 392 ns a frame for an 8-particle
+//!   rope drawn as a B-spline on a peg 0.1× its spacing).
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
 //! surface off itself: spans (cells) that are not neighbours stay a diameter apart, found by
@@ -169,9 +169,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// The spans that can touch are found from their control points' boxes (the convex hull
     /// property): sorted and swept along x, so the cost grows with the spans that are near
     /// each other, not with the square of the spans. Each pair near each other takes a
-    /// search for its nearest points (the nearest of the two spans' 5 samples, each span
-    /// sampled once for all its pairs, then up to 4 Gauss-Newton steps with the spans' exact
-    /// tangents; an exact segment-to-segment distance for straight spans) and a push through
+    /// search for its nearest points (each span sampled at 5 points once for all its pairs;
+    /// the chords between them measured exactly, segment to segment, which bound the spans'
+    /// distance within how far a cubic can bend away from its chords, so a pair they hold
+    /// apart costs no more; then up to 8 Newton steps with the spans' exact tangents and
+    /// curvatures from the nearest chord pair, and from a second one where the spans could
+    /// come near in two places; an exact segment-to-segment distance for straight spans) and
+    /// a push through
     /// the particles that weigh in both points; a pile is a stack of such contacts, so
     /// colliders and self-contact take up to 12 rounds a substep, until no overlap is over
     /// 1% of the diameter. A step with self-contact takes substeps for twice the particles'
@@ -179,14 +183,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     ///
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
-    /// floor never has two spans closer than the diameter less 1% over 10 s (a guarantee of
-    /// this drop, not of every pile: started with its helix 0.1 µm wider along x, the same
-    /// drop brings two spans to 76% of the diameter, which the pair search does not find,
-    /// since more rounds change nothing; they still never pass through each other); settled
-    /// in that pile, where about 40 pairs of spans are near each other, the floor and
-    /// self-contact together cost about 200 times the rope's bare step (0.5 ms a frame on the
-    /// development machine, where the search of 64 chord pairs a pair that this replaced
-    /// cost 3 400 times): a heap of rope is costly, keep its particles few.
+    /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
+    /// spans closer than the diameter less 2% over 10 s (0.7% to 1.6% less at the closest:
+    /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
+    /// of an earlier one); settled in that pile, where about 40 pairs of spans are near each
+    /// other, the floor and self-contact together cost about 360 times the rope's bare step
+    /// (0.4 ms a frame on the development machine): a heap of rope is costly, keep its
+    /// particles few.
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps

@@ -595,12 +595,19 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// The fastest a free particle can go this frame: its speed now plus what gravity adds
     /// over `dt`.
     pub(crate) fn top_speed(&self, dt: P::Scalar) -> P::Scalar {
-        let fastest = self
-            .velocities()
-            .iter()
-            .map(|v| v.length())
-            .fold(P::Scalar::ZERO, P::Scalar::max);
-        // Lengths, not squares: a `Q16` square saturates past 181 units a second.
+        let velocities = self.velocities().iter();
+        // Lengths in `Q16`, whose square saturates past 181 units a second; in floats the
+        // root of the largest square, the same number for one root instead of one a particle.
+        let fastest = if P::Scalar::FIXED_POINT {
+            velocities
+                .map(|v| v.length())
+                .fold(P::Scalar::ZERO, P::Scalar::max)
+        } else {
+            velocities
+                .map(|v| v.dot(*v))
+                .fold(P::Scalar::ZERO, P::Scalar::max)
+                .sqrt()
+        };
         fastest + self.settings.gravity.length() * dt
     }
 
