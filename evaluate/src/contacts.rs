@@ -278,26 +278,30 @@ pub fn run(run: &mut Run) {
             s.fastest_both / s.fastest_step
         )
     };
-    let fall = &costs.falling;
-    let falling = format!(
-        "{:.0} ns bare step, {:.0} ns with the floor and self-contact ({:.0}×)",
-        fall.step,
-        fall.both,
-        fall.both / fall.step
-    );
+    let moving = |s: &Frame| {
+        format!(
+            "{:.0} ns bare step, {:.0} ns with the floor and self-contact ({:.0}×)",
+            s.step,
+            s.both,
+            s.both / s.step
+        )
+    };
     let self_contact = format!(
         "Self-contact (`Contacts::with_self_contact`) of a 3D rope of 16 particles, 1 cm thick, on a \
          floor with contacts on its drawn Catmull-Rom curve, each frame against the same rope's \
          bare step (no contacts), medians. Lying straight: {}. Settled in a pile after falling end \
          first (the test `a_rope_dropped_in_a_pile_never_passes_through_itself`): {}. Falling \
-         into it, the mean of its 600 frames: {}. A rope of 24 particles lying still in a flat \
-         spiral: {}.\n\nA towel of 10×10 particles (0.9 × 0.6 m, f64) dropped over a rod 2 cm thick, \
+         into it, the mean of its 600 frames: {}. Whipped (lying straight, its held end then swung \
+         twice a second round a tilted circle 0.3 m across, from the floor up to 0.3 m), the mean \
+         of 600 frames: {}. \
+         A rope of 24 particles lying still in a flat spiral: {}.\n\nA towel of 10×10 particles (0.9 × 0.6 m, f64) dropped over a rod 2 cm thick, \
          its left half pushed into its right one after 2 s, with contacts on its drawn \
          Catmull-Rom surface 1 cm thick: {:.2} ms a frame with self-contact, {:.2} ms without \
          ({:.2}×; the rod's contacts ask for 47 substeps a frame).\n\n",
         line(&costs.lying),
         line(&costs.piled),
-        falling,
+        moving(&costs.falling),
+        moving(&costs.whipped),
         line(&costs.spiral),
         with * 1e3,
         without * 1e3,
@@ -373,6 +377,7 @@ struct SelfContactCosts {
     lying: Frame,
     piled: Frame,
     falling: Frame,
+    whipped: Frame,
     spiral: Frame,
 }
 
@@ -408,21 +413,53 @@ fn frame_costs<const N: usize>(
 }
 
 /// The costs of self-contact for the 16-particle rope lying straight, settled in a pile,
-/// falling into it (the mean of its 600 frames against the bare step's mean over the same
-/// frames), and for a 24-particle rope still in a flat spiral.
+/// falling into it and whipped by its held end (the means of 600 frames against the bare
+/// step's means over the same frames), and for a 24-particle rope still in a flat spiral.
 fn self_contact_costs(reps: usize) -> SelfContactCosts {
     let (rope, floor) = floor_rope(Vec3::new(0.0, 0.005, 0.0), Vec3::new(3.0, 0.005, 0.0), 120);
     let lying = frame_costs(&rope, &floor, reps);
     let (start, top) = (Vec3::new(0.0, 0.1, 0.0), Vec3::new(0.12, 3.1, 0.07));
     let (rope, floor) = floor_rope(start, top, 600);
     let piled = frame_costs(&rope, &floor, reps);
-    // The fall, timed frame by frame against the bare step of each frame's state.
-    let (mut rope, floor) = floor_rope(start, top, 0);
-    let contacts = Contacts::new(&floor, 0.005, Touch::Drawn(Smoothing::CatmullRom))
+    let (rope, floor) = floor_rope(start, top, 0);
+    let falling = moving_costs(rope, &floor, |_, _| {});
+    // Lying straight, then its held end swung round a tilted circle 0.3 m across twice a
+    // second (about 2 m/s), from the floor up to 0.3 m: the rope whips round and over itself.
+    let (rope, floor) = floor_rope(Vec3::new(0.0, 0.005, 0.0), Vec3::new(3.0, 0.005, 0.0), 120);
+    let whipped = moving_costs(rope, &floor, |rope, frame| {
+        let a = std::f32::consts::TAU * 2.0 * (frame + 1) as f32 / 60.0;
+        let hand = Vec3::new(
+            0.15 * a.sin(),
+            0.005 + 0.15 * (1.0 - a.cos()),
+            0.15 * (1.0 - a.cos()),
+        );
+        rope.move_pinned(0, hand, 1.0 / 60.0).expect("in range");
+    });
+    let (rope, floor) = spiral_rope();
+    let spiral = frame_costs(&rope, &floor, reps);
+    SelfContactCosts {
+        lying,
+        piled,
+        falling,
+        whipped,
+        spiral,
+    }
+}
+
+/// 600 frames of `rope` on `floor` with drawn-curve contacts and self-contact, `drive` moving
+/// it before each (the frame's number), each timed against the bare step of the same state:
+/// the means of both (the frames differ, so only their means compare).
+fn moving_costs(
+    mut rope: Rope<Vec3<f32>, 16>,
+    floor: &[Collider<Vec3<f32>>; 1],
+    drive: impl Fn(&mut Rope<Vec3<f32>, 16>, usize),
+) -> Frame {
+    let contacts = Contacts::new(floor, 0.005, Touch::Drawn(Smoothing::CatmullRom))
         .and_then(|c| c.with_self_contact(0.3))
         .expect("contacts");
     let (mut bare, mut touching) = (Vec::new(), Vec::new());
-    for _ in 0..600 {
+    for frame in 0..600 {
+        drive(&mut rope, frame);
         let t = std::time::Instant::now();
         let mut free = rope.clone();
         let _ = free.step(1.0 / 60.0).expect("a step");
@@ -435,21 +472,12 @@ fn self_contact_costs(reps: usize) -> SelfContactCosts {
         touching.push(t.elapsed().as_nanos() as f64);
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    // The frames differ: only their means compare.
-    let falling = Frame {
+    Frame {
         step: mean(&bare),
         floor: f64::NAN,
         both: mean(&touching),
         fastest_step: f64::NAN,
         fastest_both: f64::NAN,
-    };
-    let (rope, floor) = spiral_rope();
-    let spiral = frame_costs(&rope, &floor, reps);
-    SelfContactCosts {
-        lying,
-        piled,
-        falling,
-        spiral,
     }
 }
 

@@ -30,7 +30,7 @@
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
 //!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
-//!   the particles (`docs/summary.md` (g): 1 449 against 392 ns a frame for an 8-particle
+//!   the particles (`docs/summary.md` (g): 1 445 against 388 ns a frame for an 8-particle
 //!   rope drawn as a B-spline on a peg 0.1× its spacing).
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
@@ -188,8 +188,10 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one); settled in that pile, where about 40 pairs of spans are near each
     /// other, the floor and self-contact together cost about 360 times the rope's bare step
-    /// (0.4 ms a frame on the development machine): a heap of rope is costly, keep its
-    /// particles few.
+    /// (0.4 ms a frame on the development machine), and on average about 270 times while it
+    /// falls into the pile or is whipped round by its held end, 33 times lying straight on
+    /// the floor, and 68 times for a 24-particle rope lying still in a flat spiral: a heap of
+    /// rope is costly, keep its particles few.
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
