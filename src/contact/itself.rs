@@ -542,8 +542,10 @@ fn nearest<P: Point>(
     // Each chord pair's squared distance and nearest parameters, once measured.
     let mut chords = [[None; SAMPLES]; SAMPLES];
     let mut best: Option<(P::Scalar, usize, usize)> = None;
+    // Chords this far apart hold the spans apart.
+    let far = gap + slack;
     // Farther than this, a chord pair neither touches nor beats the nearest by the bends.
-    let mut limit = gap + slack;
+    let mut limit = far;
     for i in 0..SAMPLES {
         for j in 0..SAMPLES {
             // Every point of a chord is within half of it from one of its ends.
@@ -564,7 +566,6 @@ fn nearest<P: Point>(
         }
     }
     let (d, i, j) = best?;
-    let far = gap + slack;
     if d >= far * far {
         return None;
     }
@@ -607,8 +608,8 @@ fn nearest<P: Point>(
 /// each given as its point, tangent and second derivative at a parameter: the full Hessian
 /// (curvature terms included, so two arcs side by side or bending away converge where
 /// Gauss-Newton stalls), its least eigenvalue raised to 1/1024 of the tangents' squared
-/// lengths, a parameter held at `[0, 1]`'s bound where the slope pushes out of it, the rest
-/// clamped to it. A step that does not bring the points nearer is cut to the least of the
+/// lengths, a parameter held at `[0, 1]`'s bound where the slope or the step pushes out of
+/// it, and the step shortened to stay in `[0, 1]²` (a clamped step need not descend). A step that does not bring the points nearer is cut to the least of the
 /// parabola through the distance there, at the start and the start's slope (to between
 /// 1/10 and 1/2 of it), up to [`CUTS`] times. At most [`NEWTON_STEPS`] steps, stopped once
 /// one moves less than 1/4096 of a span. Returns the squared distance and the parameters of

@@ -166,20 +166,20 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// (static and kinetic alike). Each piece of a cut rope keeps off itself, not off the
     /// other pieces.
     ///
-    /// The spans that can touch are found from their control points' boxes (the convex hull
-    /// property): sorted and swept along x, so the cost grows with the spans that are near
-    /// each other, not with the square of the spans. Each pair near each other takes a
-    /// search for its nearest points (each span sampled at 5 points once for all its pairs;
-    /// the chords between them measured exactly, segment to segment, which bound the spans'
-    /// distance within how far a cubic can bend away from its chords, so a pair they hold
-    /// apart costs no more; then up to 8 Newton steps with the spans' exact tangents and
-    /// curvatures from the nearest chord pair, and from a second one where the spans could
-    /// come near in two places; an exact segment-to-segment distance for straight spans) and
-    /// a push through
-    /// the particles that weigh in both points; a pile is a stack of such contacts, so
-    /// colliders and self-contact take up to 12 rounds a substep, until no overlap is over
-    /// 1% of the diameter. A step with self-contact takes substeps for twice the particles'
-    /// top speed (two parts of the rope can meet head on).
+    /// The spans that can touch are found from their control points' boxes (the convex
+    /// hull property): sorted and swept along x, so the cost grows with the spans that
+    /// are near each other, not with the square of the spans. Each pair near each other
+    /// takes a search for its nearest points (each span sampled at 5 points once for
+    /// all its pairs; the chords between them measured exactly, segment to segment,
+    /// which bound the spans' distance within how far a cubic can bend away from its
+    /// chords, so a pair they hold apart costs no more; then up to 8 Newton steps with
+    /// the spans' exact tangents and curvatures from the nearest chord pair, and from a
+    /// second one where the spans could come near in two places; an exact
+    /// segment-to-segment distance for straight spans) and a push through the particles
+    /// that weigh in both points; a pile is a stack of such contacts, so colliders and
+    /// self-contact take up to 12 rounds a substep, until no overlap is over 1% of the
+    /// diameter. A step with self-contact takes substeps for twice the particles' top
+    /// speed (two parts of the rope can meet head on).
     ///
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
