@@ -20,6 +20,7 @@ mod samplers;
 mod sleep;
 mod stability;
 mod stiff;
+mod sweeps;
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -93,7 +94,7 @@ fn main() {
     };
     let start = Instant::now();
     type Section = fn(&mut Run);
-    let sections: [(&str, Section); 11] = [
+    let sections: [(&str, Section); 12] = [
         ("samplers", samplers::run),
         ("integrators", integrators::run),
         ("ropes and cloth", ropes::run),
@@ -105,6 +106,7 @@ fn main() {
         ("stiff ropes", stiff::run),
         ("chains", chains::run),
         ("sleep", sleep::run),
+        ("contacts swept", sweeps::run),
     ];
     for (name, section) in sections {
         if only.as_deref().is_some_and(|o| !name.starts_with(o)) {

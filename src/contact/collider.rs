@@ -348,6 +348,14 @@ impl<P: Point> Collider<P> {
         }
     }
 
+    /// A half-space's outward unit normal (its gap grows along it); `None` for other solids.
+    pub(crate) fn outward(&self) -> Option<P> {
+        match &self.solid {
+            Solid::HalfSpace { normal, .. } => Some(*normal),
+            _ => None,
+        }
+    }
+
     /// A number that orders points near the solid as [`gap`](Self::gap) does, with no square
     /// root: the squared distance to a ball's centre or a capsule's axis, times `scale²`, else
     /// the gap. `scale` (from [`key_scale`](Self::key_scale)) keeps the square inside `Q16`.

@@ -14,6 +14,8 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn span_bounds(&self, span: usize) -> Aabb<P>;
     /// The parameter in `[0, 1]` of span `span` where `key` is least.
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar;
+    /// The parameter of `span` where it reaches farthest against `normal`.
+    fn lowest(&self, span: usize, normal: P) -> P::Scalar;
     /// The point of span `span` at `t`.
     fn point(&self, span: usize, t: P::Scalar) -> P;
     /// Its derivative `dP/dt` there.
@@ -45,6 +47,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
     }
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
         Smoothed::deepest(self, span, key)
+    }
+    fn lowest(&self, span: usize, normal: P) -> P::Scalar {
+        Smoothed::lowest(self, span, normal)
     }
     fn point(&self, span: usize, t: P::Scalar) -> P {
         Smoothed::point(self, span, t)

@@ -18,8 +18,10 @@
 //! - [`Touch::Drawn`] tests what the game draws ([`Touch::DrawnLoop`]: a loop's closed
 //!   curve). A rope's curve: each span's control-point box first (the convex hull property)
 //!   against the collider's box and its distance from the box's centre, then the deepest
-//!   point of the span, found by 5 samples and 8 rounds that halve the bracket around the
-//!   deepest (to 1/1024 of a cubic span; halving only, so shifts and additions in `Q16`). A
+//!   point of the span: in a half-space exactly (an end of the span, or where the slope of
+//!   its height, a quadratic, is zero: a square root and up to 4 divisions); in the other
+//!   solids by 5 samples and 8 rounds that halve the bracket around the deepest (to 1/1024
+//!   of a cubic span; halving only, so shifts and additions in `Q16`). A
 //!   cloth's surface: each cell between four neighbouring particles, its supporting
 //!   particles' box grown by the basis's overshoot (Catmull-Rom: 25/16), then the deepest
 //!   point of the cell by 3×3 samples and 8 halving rounds of a compass search (its last
@@ -178,20 +180,24 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// segment-to-segment distance for straight spans) and a push through the particles
     /// that weigh in both points; a pile is a stack of such contacts, so colliders and
     /// self-contact take up to 12 rounds a substep, until no overlap is over 1% of the
-    /// diameter. A step with self-contact takes substeps for twice the particles' top
-    /// speed (two parts of the rope can meet head on).
+    /// diameter. The colliders have the last word: when the last round pushed two spans
+    /// apart, the colliders are resolved once more, so that a floor is never passed (two
+    /// spans may then stay within the rounds' tolerance). A step with self-contact takes
+    /// substeps for twice the particles' top speed (two parts of the rope can meet head on).
     ///
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
     /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
-    /// spans closer than the diameter less 2% over 10 s (0.7% to 1.6% less at the closest:
+    /// spans closer than the diameter less 2% over 10 s (0.9% to 1.1% less at the closest:
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
-    /// of an earlier one); settled in that pile, where about 40 pairs of spans are near each
-    /// other, the floor and self-contact together cost about 360 times the rope's bare step
-    /// (0.4 ms a frame on the development machine), and on average about 270 times while it
-    /// falls into the pile or is whipped round by its held end, 33 times lying straight on
-    /// the floor, and 68 times for a 24-particle rope lying still in a flat spiral: a heap of
-    /// rope is costly, keep its particles few.
+    /// of an earlier one) and never a particle into the floor; settled in that pile, where
+    /// about 40 pairs of spans are near each other, the floor and self-contact together cost
+    /// about 220 times the rope's bare step (0.24 ms a frame on the development machine), and
+    /// on average about 205 times while it falls into the pile and 220 times while it is
+    /// whipped round by its held end, 15 times lying straight on the floor, and 49 times for
+    /// a 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
+    /// particles few. Section (l) gives the pile for every integrator (25 to 190 times its
+    /// bare step settled).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -422,12 +428,16 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if on_curve {
                     self.resolve_spans(pos, vel, w, times, drawn);
                 } else {
-                    // The particles out of the colliders, the segments off each other.
-                    self.rounds(|| {
+                    // The particles out of the colliders, the segments off each other; the
+                    // colliders have the last word.
+                    let last = self.rounds(|| {
                         self.resolve_particles(pos, vel, w, times);
                         drawn.rebuild(pos, (0, K - 1))?;
                         self.resolve_self(pos, vel, w, times.0, drawn)
                     });
+                    if last {
+                        self.resolve_particles(pos, vel, w, times);
+                    }
                 }
             };
         let whole = joined[..K - 1].iter().all(|&j| j);
@@ -479,27 +489,35 @@ impl<'a, P: Point> Contacts<'a, P> {
         (h, lag): (P::Scalar, P::Scalar),
         curve: &mut impl DrawnSpans<P, K>,
     ) {
-        self.rounds(|| {
+        let last = self.rounds(|| {
             if !self.resolve_colliders(pos, vel, inv_mass, (h, lag), curve) {
                 return None;
             }
             self.resolve_self(pos, vel, inv_mass, h, curve)
         });
+        // Self-contact's last pushes may reach into a collider: the colliders have the last
+        // word (a floor is never passed; two spans may stay within the rounds' tolerance).
+        if last {
+            self.resolve_colliders(pos, vel, inv_mass, (h, lag), curve);
+        }
     }
 
     /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
     /// to stop) until no two parts overlapped by more than 1/100 of the gap between them
     /// (the tolerance of the self-contact guarantee), at most [`SELF_ROUNDS`] times: with
     /// self-contact a pile is a stack of contacts on contacts, each push undoing part of its
-    /// neighbours'. Without self-contact, one round.
-    fn rounds(&self, mut round: impl FnMut() -> Option<P::Scalar>) {
+    /// neighbours'. Without self-contact, one round. Returns whether the last round pushed
+    /// two parts apart.
+    fn rounds(&self, mut round: impl FnMut() -> Option<P::Scalar>) -> bool {
         let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 100);
+        let mut last = None;
         for _ in 0..SELF_ROUNDS {
-            match round() {
-                Some(deepest) if deepest > settled => {}
-                _ => return,
+            last = round();
+            if last.is_none_or(|deepest| deepest <= settled) {
+                break;
             }
         }
+        last.is_some_and(|deepest| deepest > P::Scalar::ZERO)
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider, redrawing after
@@ -525,7 +543,10 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let Some(scale) = self.near(collider, hull, shift) else {
                     continue;
                 };
-                let t = curve.deepest(span, |x| collider.search_key(x + shift, scale));
+                let t = match collider.outward() {
+                    Some(normal) => curve.lowest(span, normal),
+                    None => curve.deepest(span, |x| collider.search_key(x + shift, scale)),
+                };
                 let x = curve.point(span, t);
                 let weights = Weights::of(&*curve, span, t);
                 let v = point_of(vel, weights.entries());

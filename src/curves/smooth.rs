@@ -505,6 +505,16 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         }
     }
 
+    /// The parameter of span `span` where it reaches farthest against `normal`: see
+    /// [`Bezier::lowest`](crate::Bezier).
+    pub(crate) fn lowest(&self, span: usize, normal: P) -> P::Scalar {
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.lowest(normal),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].lowest(normal),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].lowest(normal),
+        }
+    }
+
     /// The box of span `span`'s control points, which holds the span (convex hull property).
     pub fn span_bounds(&self, span: usize) -> Aabb<P> {
         Aabb::from_points(self.span_points(span)).unwrap_or(Aabb::point(P::default()))

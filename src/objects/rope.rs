@@ -3,7 +3,7 @@
 use crate::error::{invalid, out_of_range};
 use core::ops::{Deref, DerefMut};
 
-use crate::contact::Contacts;
+use crate::contact::{Contacts, Touch};
 use crate::curves::smooth::{self, Smoothing};
 use crate::error::{check_points, check_positive};
 use crate::geometry::catenary::Catenary;
@@ -247,9 +247,13 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let springs = self.system.topology();
         let whole = !springs.any_broken();
-        // Joined along the chain unless something broke; the closing spring of a loop looked up.
-        let joined: [bool; N] =
-            core::array::from_fn(|i| (whole && i + 1 < N) || springs.joins(i, (i + 1) % N));
+        // Joined along the chain unless something broke; the closing spring looked up only
+        // for a loop (an open curve never reads it).
+        let closing = matches!(contacts.touch(), Touch::DrawnLoop(_)) && springs.joins(N - 1, 0);
+        let joined: [bool; N] = core::array::from_fn(|i| match i + 1 < N {
+            true => whole || springs.joins(i, i + 1),
+            false => closing,
+        });
         self.system
             .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
                 contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times, &joined)

@@ -690,9 +690,11 @@ fn segment_distance((p0, p1): (Vec3<f64>, Vec3<f64>), (q0, q1): (Vec3<f64>, Vec3
 /// and from starts whose helix is 0.1 µm, 0.1 mm and 0.2 mm wider along x and 0.1 mm
 /// narrower (a pile is chaotic: each start meets other contacts). With self-contact, no two
 /// spans of its drawn curve that are not neighbours come closer than its diameter less 2%
-/// over 10 s (measured 0.9%, 1.0%, 0.8%, 1.6% and 0.7% less at the closest; before the pair
+/// over 10 s (measured 1.0%, 1.0%, 1.0%, 1.1% and 0.9% less at the closest; before the pair
 /// search measured the chords between its samples, the last four starts brought two spans
-/// to 76%, 61%, 9% and 0.1% of the diameter), and the first start stays on the floor.
+/// to 76%, 61%, 9% and 0.1% of the diameter), and every start stays on the floor: no
+/// particle more than 0.1% of its radius into it (the colliders have the last word after
+/// self-contact's rounds; before, the first start's lowest particle was allowed 1%).
 /// (Without self-contact the pile passes through itself: printed beside it.)
 #[test]
 fn a_rope_dropped_in_a_pile_never_passes_through_itself() {
@@ -746,15 +748,13 @@ fn a_rope_dropped_in_a_pile_never_passes_through_itself() {
         let (nearest, lowest, height) = drop(true, wider);
         eprintln!(
             "helix {wider:e} m wider: nearest non-neighbouring spans {nearest:.6} m with \
-             self-contact, {without:.5} m without (diameter {}); lowest particle {lowest:.4} m; \
+             self-contact, {without:.5} m without (diameter {}); lowest particle {lowest:.6} m; \
              the pile {height:.3} m high",
             2.0 * RADIUS
         );
         assert!(height < 1.0, "the rope fell into a pile: {height} m");
         assert!(nearest >= 2.0 * RADIUS * 0.98, "{wider}: {nearest}");
-        if wider == 0.0 {
-            assert!(lowest >= RADIUS * 0.99, "{lowest}");
-        }
+        assert!(lowest >= RADIUS * 0.999, "{wider}: {lowest}");
     }
 }
 

@@ -69,6 +69,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar {
         self.spans[span].deepest(key)
     }
+    fn lowest(&self, span: usize, normal: P) -> P::Scalar {
+        self.spans[span].lowest(normal)
+    }
     fn point(&self, span: usize, t: P::Scalar) -> P {
         self.spans[span].eval(t)
     }
