@@ -348,6 +348,15 @@ impl<P: Point> Collider<P> {
         }
     }
 
+    /// A ball's centre (its surface's nearest point to any point lies towards it); `None`
+    /// for other solids.
+    pub(crate) fn centre(&self) -> Option<P> {
+        match &self.solid {
+            Solid::Ball { center, .. } => Some(*center),
+            _ => None,
+        }
+    }
+
     /// A half-space's outward unit normal (its gap grows along it); `None` for other solids.
     pub(crate) fn outward(&self) -> Option<P> {
         match &self.solid {

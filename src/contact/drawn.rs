@@ -16,6 +16,8 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn deepest(&self, span: usize, key: impl Fn(P) -> P::Scalar) -> P::Scalar;
     /// The parameter of `span` where it reaches farthest against `normal`.
     fn lowest(&self, span: usize, normal: P) -> P::Scalar;
+    /// The parameter of `span` nearest `c`.
+    fn nearest(&self, span: usize, c: P) -> P::Scalar;
     /// The point of span `span` at `t`.
     fn point(&self, span: usize, t: P::Scalar) -> P;
     /// Its derivative `dP/dt` there.
@@ -50,6 +52,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
     }
     fn lowest(&self, span: usize, normal: P) -> P::Scalar {
         Smoothed::lowest(self, span, normal)
+    }
+    fn nearest(&self, span: usize, c: P) -> P::Scalar {
+        Smoothed::nearest(self, span, c)
     }
     fn point(&self, span: usize, t: P::Scalar) -> P {
         Smoothed::point(self, span, t)

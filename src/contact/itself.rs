@@ -3,6 +3,7 @@
 
 use super::Contacts;
 use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
+use crate::curves::power::Power;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
 
@@ -81,30 +82,6 @@ impl<P: Point, const K: usize> Samples<P, K> {
         for j in 0..count.min(n) {
             self.fresh[(first + j) % n] = false;
         }
-    }
-}
-
-/// A cubic in power form about its start, `p(t) = p0 + t·(c1 + t·(c2 + t·c3))`: a point in 3
-/// multiply-adds a coordinate, its tangent in 2, where de Casteljau takes 6 and 5 lerps.
-#[derive(Clone, Copy)]
-struct Power<P>([P; 4]);
-
-impl<P: Point> Power<P> {
-    /// The power form of the Bézier cubic with control points `p`.
-    fn of([p0, p1, p2, p3]: [P; 4]) -> Self {
-        let three = P::Scalar::from_i16(3);
-        let (d1, d2, d3) = (p1 - p0, p2 - p1, p3 - p2);
-        Power([p0, d1 * three, (d2 - d1) * three, d3 - d2 - d2 + d1])
-    }
-
-    fn at(&self, t: P::Scalar) -> P {
-        let [p0, c1, c2, c3] = self.0;
-        p0 + (c1 + (c2 + c3 * t) * t) * t
-    }
-
-    fn slope(&self, t: P::Scalar) -> P {
-        let [_, c1, c2, c3] = self.0;
-        c1 + (c2 + c2 + c3 * (t * P::Scalar::from_i16(3))) * t
     }
 }
 

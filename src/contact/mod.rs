@@ -19,8 +19,10 @@
 //!   curve). A rope's curve: each span's control-point box first (the convex hull property)
 //!   against the collider's box and its distance from the box's centre, then the deepest
 //!   point of the span: in a half-space exactly (an end of the span, or where the slope of
-//!   its height, a quadratic, is zero: a square root and up to 4 divisions); in the other
-//!   solids by 5 samples and 8 rounds that halve the bracket around the deepest (to 1/1024
+//!   its height, a quadratic, is zero: a square root and up to 4 divisions); in a ball, in
+//!   floats, the point nearest its centre by 9 samples and up to 6 Newton steps on the
+//!   squared distance (to the format's precision); in the other solids, and in a ball in
+//!   `Q16`, by 5 samples and 8 rounds that halve the bracket around the deepest (to 1/1024
 //!   of a cubic span; halving only, so shifts and additions in `Q16`). A
 //!   cloth's surface: each cell between four neighbouring particles, its supporting
 //!   particles' box grown by the basis's overshoot (Catmull-Rom: 25/16), then the deepest
@@ -192,12 +194,12 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in that pile, where
     /// about 40 pairs of spans are near each other, the floor and self-contact together cost
-    /// about 220 times the rope's bare step (0.24 ms a frame on the development machine), and
-    /// on average about 205 times while it falls into the pile and 220 times while it is
-    /// whipped round by its held end, 15 times lying straight on the floor, and 49 times for
+    /// about 200 times the rope's bare step (0.3 ms a frame on the development machine), and
+    /// on average about 175 times while it falls into the pile and 200 times while it is
+    /// whipped round by its held end, 14 times lying straight on the floor, and 47 times for
     /// a 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
     /// particles few. Section (l) gives the pile for every integrator (25 to 190 times its
-    /// bare step settled).
+    /// bare step settled, the dearer the integrator's own step the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -543,9 +545,12 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let Some(scale) = self.near(collider, hull, shift) else {
                     continue;
                 };
-                let t = match collider.outward() {
-                    Some(normal) => curve.lowest(span, normal),
-                    None => curve.deepest(span, |x| collider.search_key(x + shift, scale)),
+                // In closed form in a half-space; by Newton steps to a ball's centre in
+                // floats; else by the halving search (shifts and additions in `Q16`).
+                let t = match (collider.outward(), collider.centre()) {
+                    (Some(normal), _) => curve.lowest(span, normal),
+                    (None, Some(c)) if !P::Scalar::FIXED_POINT => curve.nearest(span, c - shift),
+                    _ => curve.deepest(span, |x| collider.search_key(x + shift, scale)),
                 };
                 let x = curve.point(span, t);
                 let weights = Weights::of(&*curve, span, t);

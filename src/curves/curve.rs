@@ -1,5 +1,6 @@
 //! Bézier curves of any degree: evaluation, tangents, splitting, bounds and arc length.
 
+use crate::curves::power::Power;
 use crate::error::check_points;
 use crate::{Aabb, Error, Point, Scalar};
 
@@ -255,6 +256,17 @@ impl<P: Point, const N: usize> Bezier<P, N> {
             }
         }
         best.0
+    }
+
+    /// The parameter in `[0, 1]` of the point nearest `c` (the deepest in a ball centred
+    /// there): a cubic in floats by Newton steps on its power form
+    /// ([`Power::nearest`](crate::curves::power::Power)), to the format's precision; other
+    /// degrees, and fixed point, by [`deepest`](Self::deepest) on the squared distance.
+    pub(crate) fn nearest(&self, c: P) -> P::Scalar {
+        match <[P; 4]>::try_from(&self.points[..]) {
+            Ok(cubic) if !P::Scalar::FIXED_POINT => Power::of(cubic).nearest(c),
+            _ => self.deepest(|p| (p - c).dot(p - c)),
+        }
     }
 
     /// Calls `visit(first + i, piece)` for the `2^levels` pieces of `levels` halvings, in

@@ -7,6 +7,7 @@ pub mod flatten;
 pub mod lod;
 pub(crate) mod natural;
 pub mod patch;
+pub(crate) mod power;
 pub mod sampler;
 pub mod smooth;
 mod spans;

@@ -515,6 +515,15 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         }
     }
 
+    /// The parameter of span `span` nearest `c`: see [`Bezier::nearest`](crate::Bezier).
+    pub(crate) fn nearest(&self, span: usize, c: P) -> P::Scalar {
+        match &self.pieces {
+            Pieces::Whole(curve) => curve.nearest(c),
+            Pieces::Cubic(spans, count) => spans[span.min(count - 1)].nearest(c),
+            Pieces::Straight(segments, count) => segments[span.min(count - 1)].nearest(c),
+        }
+    }
+
     /// The box of span `span`'s control points, which holds the span (convex hull property).
     pub fn span_bounds(&self, span: usize) -> Aabb<P> {
         Aabb::from_points(self.span_points(span)).unwrap_or(Aabb::point(P::default()))

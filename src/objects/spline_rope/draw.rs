@@ -72,6 +72,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
     fn lowest(&self, span: usize, normal: P) -> P::Scalar {
         self.spans[span].lowest(normal)
     }
+    fn nearest(&self, span: usize, c: P) -> P::Scalar {
+        self.spans[span].nearest(c)
+    }
     fn point(&self, span: usize, t: P::Scalar) -> P {
         self.spans[span].eval(t)
     }
