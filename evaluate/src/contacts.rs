@@ -193,8 +193,8 @@ pub fn run(run: &mut Run) {
             ratio4(1)
         ),
         ratio4(0) <= 1.0 && ratio4(1) <= 2.0,
-        "each contact is a distance per particle (a square root), and curve contacts add a box \
-         test per span, a search for the nearest point (9 samples and Newton steps) on each \
+        "each collider takes a box test per particle and a distance (a square root) for each \
+         particle in its box, and curve contacts add a box test per span, a search for the nearest point (9 samples and Newton steps) on each \
          span near a peg, the push's particle weights and a redraw of the curve after it",
     );
     let (far_added, (far_substeps, bare_substeps)) = far_collider_cost(reps);

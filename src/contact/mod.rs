@@ -13,8 +13,9 @@
 //! are what the next substep's positions are built from), so the same projection plus impulse
 //! serves them all.
 //!
-//! - [`Touch::Particles`] tests the particles only: cheap (one distance per particle and
-//!   collider), and enough when every collider is wider than the particle spacing.
+//! - [`Touch::Particles`] tests the particles only: cheap (a box test per particle and
+//!   collider, and a distance for a particle within the collider's box grown by the
+//!   thickness), and enough when every collider is wider than the particle spacing.
 //! - [`Touch::Drawn`] tests what the game draws ([`Touch::DrawnLoop`]: a loop's closed
 //!   curve). A rope's curve: each span's control-point box first (the convex hull property)
 //!   against the collider's box and its distance from the box's centre, then the deepest
@@ -194,12 +195,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in that pile, where
     /// about 40 pairs of spans are near each other, the floor and self-contact together cost
-    /// about 200 times the rope's bare step (0.3 ms a frame on the development machine), and
-    /// on average about 175 times while it falls into the pile and 200 times while it is
-    /// whipped round by its held end, 14 times lying straight on the floor, and 47 times for
-    /// a 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
-    /// particles few. Section (l) gives the pile for every integrator (25 to 190 times its
-    /// bare step settled, the dearer the integrator's own step the less).
+    /// 165 to 215 times the rope's bare step (the median and fastest batches of one run;
+    /// 0.24 ms a frame on the development machine), and on average about 210 times while it
+    /// falls into the pile or is whipped round by its held end, 15 times lying straight on
+    /// the floor, and 47 times for a 24-particle rope lying still in a flat spiral: a heap of
+    /// rope is costly, keep its particles few. Section (l) gives the pile for every
+    /// integrator (25 to 186 times its bare step settled, the dearer the integrator's own
+    /// step the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -379,11 +381,21 @@ impl<'a, P: Point> Contacts<'a, P> {
         (h, lag): (P::Scalar, P::Scalar),
     ) {
         for (k, collider) in self.colliders.iter().enumerate() {
+            // A point outside the collider's box grown by the thickness is farther than the
+            // thickness from it: no distance to measure (a half-space's box holds everything).
+            let reach = collider
+                .outward()
+                .is_none()
+                .then(|| collider.bounds().grown(self.thickness));
             for ((x, v), &w) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass) {
                 if w <= P::Scalar::ZERO {
                     continue;
                 }
-                let (body, offset) = (self.body(k, collider), self.offset(k, collider, lag));
+                let offset = self.offset(k, collider, lag);
+                if reach.is_some_and(|r| !r.contains(*x + offset)) {
+                    continue;
+                }
+                let body = self.body(k, collider);
                 if let Some((dx, dv, moved)) =
                     self.response(collider, body, (*x, *v, w), (h, offset))
                 {
