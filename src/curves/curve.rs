@@ -407,13 +407,7 @@ mod tests {
     /// in `Q16` within 1/1000 of a metre of it.
     #[test]
     fn the_lowest_point_is_found_exactly() {
-        let mut seed = 12345u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-        };
+        let mut next = crate::curves::power::tests::uniform(12345);
         let mut cubics: std::vec::Vec<[f64; 8]> =
             (0..500).map(|_| [(); 8].map(|_| next())).collect();
         cubics.push([0.0, 1.0, 1.0, 1.0, 2.0, 1.0, 3.0, 1.0]);

@@ -63,9 +63,10 @@ impl<P: Point> Power<P> {
             }
         }
         let (mut lo, mut hi) = ((best.0 - step).max(zero), (best.0 + step).min(one));
-        let mut t = best.0;
+        // The parameter and its point's offset from `c`, carried from one step to the next.
+        let (mut t, mut d) = (best.0, self.at(best.0) - c);
         for _ in 0..NEAREST_STEPS {
-            let (d, slope) = (self.at(t) - c, self.slope(t));
+            let slope = self.slope(t);
             let (g, h) = (d.dot(slope), slope.dot(slope) + d.dot(self.bend(t)));
             if g > zero {
                 hi = t;
@@ -78,9 +79,9 @@ impl<P: Point> Power<P> {
             let next = newton
                 .filter(|&n| n > lo && n < hi)
                 .unwrap_or((lo + hi) * P::Scalar::ratio(1, 2));
-            let e = d2(next);
             let moved = (next - t).abs();
-            t = next;
+            (t, d) = (next, self.at(next) - c);
+            let e = d.dot(d);
             if e < best.1 {
                 best = (t, e);
             }
@@ -93,9 +94,20 @@ impl<P: Point> Power<P> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::Vec2;
+
+    /// Numbers evenly spread over `[-2, 2)`, the same from the same `seed` (a 64-bit linear
+    /// congruential generator): random control points for the curve searches' tests.
+    pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        }
+    }
 
     /// `nearest` finds the least squared distance of the dip its best sample lies in (a
     /// dense sampling of that sample's neighbours' bracket, f64, 20 001 points) to 1e-9; on
@@ -103,13 +115,7 @@ mod tests {
     /// search of `Bezier::deepest` on the same key in at most 1 case in 100 (printed).
     #[test]
     fn the_nearest_point_is_found_in_its_dip() {
-        let mut seed = 987654321u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-        };
+        let mut next = uniform(987654321);
         let mut worse = 0;
         for _ in 0..500 {
             let p: [Vec2<f64>; 4] = core::array::from_fn(|_| Vec2::new(next(), next()));
