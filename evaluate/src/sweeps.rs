@@ -111,7 +111,7 @@ fn frame_ratio<const N: usize>(
 /// same states, while it falls (its first 2 s) and settled (its last 2 s).
 fn pile(method: AnyIntegrator) -> (f64, f64) {
     let (bottom, top) = (Vec3::new(0.0, 0.1, 0.0), Vec3::new(0.12, 3.1, 0.07));
-    let (mut rope, floor) = floor_rope(method, (bottom, top), 0);
+    let (mut rope, floor) = floor_rope(method, (bottom, top), 0.0, 0);
     let contacts = Contacts::new(&floor, 0.005, Touch::Drawn(Smoothing::CatmullRom))
         .and_then(|c| c.with_self_contact(0.3))
         .expect("contacts");

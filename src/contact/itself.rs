@@ -3,87 +3,10 @@
 
 use super::Contacts;
 use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
-use crate::curves::power::Power;
+use super::memory::{PairMemory, Recall};
+use super::span_pairs::{Near, Samples, segments_nearest};
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
-
-/// What the pair search reads of one span, taken when a pair first needs it and kept until
-/// the curve moves: a span's samples serve all its pairs.
-#[derive(Clone, Copy)]
-struct Sampled<P: Point> {
-    /// Its points at [`SAMPLES`] + 1 even steps: the ends of its chords.
-    points: [P; SAMPLES + 1],
-    /// How far it strays from those chords at most: `3/(4·SAMPLES²)` of its control points'
-    /// largest second difference (a cubic's `|p''| / 6`), the bound of linear interpolation.
-    bend: P::Scalar,
-    /// Half its longest chord.
-    half: P::Scalar,
-    /// Its second derivative, `p''(t) = second[0] + t·second[1]`.
-    second: [P; 2],
-    /// In floating point, its cubic in power form.
-    power: Option<Power<P>>,
-}
-
-/// Every span's [`Sampled`], and whether it is up to date.
-struct Samples<P: Point, const K: usize> {
-    spans: [Sampled<P>; K],
-    fresh: [bool; K],
-}
-
-impl<P: Point, const K: usize> Samples<P, K> {
-    fn new() -> Self {
-        let zero = P::Scalar::ZERO;
-        let empty = Sampled {
-            points: [P::default(); SAMPLES + 1],
-            bend: zero,
-            half: zero,
-            second: [P::default(); 2],
-            power: None,
-        };
-        Samples {
-            spans: [empty; K],
-            fresh: [false; K],
-        }
-    }
-
-    /// Brings span `span` of `curve` up to date. A span that is no cubic (one Bézier through
-    /// every particle: a single span, which pairs with none) counts as unbent.
-    fn take(&mut self, curve: &impl DrawnSpans<P, K>, span: usize) {
-        if self.fresh[span] {
-            return;
-        }
-        let cubic = curve.cubic(span);
-        let s = &mut self.spans[span];
-        // Fixed point keeps de Casteljau's convex combinations: the power form's
-        // coefficients can leave the format's range.
-        s.power = cubic.filter(|_| !P::Scalar::FIXED_POINT).map(Power::of);
-        for (k, x) in s.points.iter_mut().enumerate() {
-            let t = P::Scalar::ratio(k as u32, SAMPLES as u32);
-            *x = s.power.map_or_else(|| curve.point(span, t), |c| c.at(t));
-        }
-        let (d0, d1) = cubic.map_or((P::default(), P::default()), |[p0, p1, p2, p3]| {
-            (p2 - p1 - (p1 - p0), p3 - p2 - (p2 - p1))
-        });
-        let six = P::Scalar::from_i16(6);
-        s.second = [d0 * six, (d1 - d0) * six];
-        s.bend = d0.length().max(d1.length()) * P::Scalar::ratio(3, (4 * SAMPLES * SAMPLES) as u32);
-        let longest = s
-            .points
-            .windows(2)
-            .map(|c| (c[1] - c[0]).dot(c[1] - c[0]))
-            .fold(P::Scalar::ZERO, P::Scalar::max);
-        s.half = longest.sqrt() * P::Scalar::ratio(1, 2);
-        self.fresh[span] = true;
-    }
-
-    /// Forgets the samples of `count` spans from `first` on, counted round the `n` (they
-    /// were drawn again).
-    fn forget(&mut self, (first, count): (usize, usize), n: usize) {
-        for j in 0..count.min(n) {
-            self.fresh[(first + j) % n] = false;
-        }
-    }
-}
 
 impl<P: Point> Contacts<'_, P> {
     /// Keeps every two spans of `curve` that are not neighbours (`closed`: counted round the
@@ -98,15 +21,16 @@ impl<P: Point> Contacts<'_, P> {
     /// by the difference), with its approach stopped and its sliding braked by Coulomb
     /// friction. A curve of cubic spans has the spans each push moved redrawn after it (those
     /// the two points' particles weigh in), and their samples taken again when next needed;
-    /// straight segments are redrawn once, after the pass. Returns the deepest overlap it
+    /// straight segments are redrawn once, after the pass. `memory` ([`PairMemory`]) spares
+    /// the search of two cubic spans it holds apart, and follows two it found near each
+    /// other from where they were by Newton steps alone. Returns the deepest overlap it
     /// found, or `None` when the redrawn curve left the range (the step's guard undoes it).
     pub(super) fn resolve_self<const K: usize>(
         &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
+        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         h: P::Scalar,
         curve: &mut impl DrawnSpans<P, K>,
+        memory: Option<&mut PairMemory<P, K>>,
     ) -> Option<P::Scalar> {
         let zero = P::Scalar::ZERO;
         let Some(friction) = self.self_friction else {
@@ -123,14 +47,15 @@ impl<P: Point> Contacts<'_, P> {
         // Straight segments are measured from the particles: no samples.
         let straight = curve.is_straight();
         let mut samples = (!straight).then(Samples::new);
+        let mut memory = memory.filter(|_| !straight);
         let mut deepest = zero;
         sweep(&boxes[..n], &mut order[..n], |a, b| {
             let apart = a.abs_diff(b);
             let apart = if closed { apart.min(n - apart) } else { apart };
             if apart >= 2 {
                 let parts = (&mut *pos, &mut *vel, inv_mass);
-                let (depth, moved) =
-                    self.push_apart(parts, (h, friction), &*curve, (a, b), samples.as_mut());
+                let known = (samples.as_mut(), memory.as_deref_mut());
+                let (depth, moved) = self.push_apart(parts, (h, friction), &*curve, (a, b), known);
                 // A curved span's search reads the curve: the spans each point's particles
                 // weigh in are redrawn after each push. Straight spans are read from the
                 // particles, and the curve redrawn once at the end.
@@ -160,47 +85,68 @@ impl<P: Point> Contacts<'_, P> {
     }
 
     /// Pushes spans `a` and `b` of `curve` apart where they are nearer than twice the
-    /// thickness ([`nearest`] from `samples`; without them, exactly between the straight
-    /// segments of a polyline); returns by how much they were (0 when apart or both spans
-    /// are held) and the first and last particle that weigh in each of the two points.
+    /// thickness ([`Samples::nearest`]: searched, or followed from where `memory` last found
+    /// them near, and what was found kept there; without samples, exactly between the
+    /// straight segments of a polyline); returns by how much they were (0 when apart or
+    /// both spans are held) and the first and last particle that weigh in each of the two
+    /// points.
     fn push_apart<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         (h, friction): (P::Scalar, P::Scalar),
         curve: &impl DrawnSpans<P, K>,
         (a, b): (usize, usize),
-        samples: Option<&mut Samples<P, K>>,
+        (samples, mut memory): (Option<&mut Samples<P, K>>, Option<&mut PairMemory<P, K>>),
     ) -> (P::Scalar, [(usize, usize); 2]) {
         let zero = (P::Scalar::ZERO, [(1, 0); 2]);
         let gap = self.thickness + self.thickness;
-        let found = if let Some(samples) = samples {
-            samples.take(curve, a);
-            samples.take(curve, b);
-            let (sa, sb) = (&samples.spans[a], &samples.spans[b]);
-            let point =
-                |s: &Sampled<P>, span, t| s.power.map_or_else(|| curve.point(span, t), |c| c.at(t));
-            let slope = |s: &Sampled<P>, span, t| {
-                s.power
-                    .map_or_else(|| curve.tangent(span, t), |c| c.slope(t))
+        let pair = (a.min(b), a.max(b));
+        // The memory keeps a pair's parameters in the order of its spans.
+        let ordered = |(u, v)| if a < b { (u, v) } else { (v, u) };
+        // Where the pair comes nearest, and whether it was searched afresh.
+        let (near, fresh) = if let Some(samples) = samples {
+            let places = match memory
+                .as_deref_mut()
+                .map(|m| m.recall(pair, (curve.cubic(pair.0), curve.cubic(pair.1))))
+            {
+                Some(Recall::Apart) => return zero,
+                Some(Recall::Near((at, also))) => Some((ordered(at), also.map(ordered))),
+                _ => None,
             };
-            nearest(
-                (sa, |u| point(sa, a, u), |u| slope(sa, a, u)),
-                (sb, |v| point(sb, b, v), |v| slope(sb, b, v)),
-                gap,
-            )
+            match samples.nearest(curve, (a, b), places, gap) {
+                Ok(found) => found,
+                Err(clear) => {
+                    if let Some(memory) = memory {
+                        memory.remember(pair, clear - gap, None);
+                    }
+                    return zero;
+                }
+            }
         } else {
             // Two segments between the particles: their nearest points exactly.
             let ends = |span: usize| (pos[span], pos[(span + 1) % K]);
             let (u, v, _) = segments_nearest(ends(a), ends(b));
-            Some((u, v))
+            (Near::only((u, v)), false)
         };
-        let Some((u, v)) = found else {
-            return zero;
-        };
+        let (u, v) = near.at;
         let (wa, wb) = (Weights::of(curve, a, u), Weights::of(curve, b, v));
         let g = wa.minus(&wb);
         let d = point_of(pos, g.entries());
         let dist = d.length();
+        if let Some(memory) = memory {
+            let places = (ordered(near.at), near.also.map(ordered));
+            if fresh {
+                // Nowhere else nearer than `elsewhere`: while the spans move less than the
+                // margin, they touch nowhere else, or the nearest points stay about these
+                // places; at most a gap.
+                let margin = near.elsewhere.map_or(gap, |e| {
+                    (e - gap).max((e - dist) * P::Scalar::ratio(1, 2)).min(gap)
+                });
+                memory.remember(pair, margin, Some(places));
+            } else {
+                memory.moved_to(pair, places);
+            }
+        }
         // Two spans that cross exactly give no direction to part them: the next substep will.
         if !(dist < gap && dist > gap * P::Scalar::ratio(1, 1024)) {
             return zero;
@@ -487,247 +433,8 @@ fn nearest_on_cells<P: Point>(
     found.map(|(_, params)| params)
 }
 
-/// The parameters `(u, v)` in `[0, 1]²` of the nearest points of two spans, `a(u)` and
-/// `b(v)` with tangents `ta` and `tb`, sampled in `sa` and `sb`. Each span lies within its
-/// `bend` of the chords between its samples, so the chords' exact distances (segment to
-/// segment; a chord pair whose nearest corners are too far for it to matter is skipped
-/// unmeasured) bound the spans' within the two bends. `None`, without more, when no chord
-/// pair comes within `gap` plus both bends: the spans are apart. Otherwise the nearest chord
-/// pair seeds [`refine`], and so does the nearest pair of chords that are no neighbours of
-/// those, when it could still hold a nearer point pair (two arcs near each other in two
-/// places); the nearest result wins. Cost: `(SAMPLES + 1)²` squared distances, up to
-/// `SAMPLES²` segment distances, and 2 or 4 points and tangents a Newton step.
-fn nearest<P: Point>(
-    (sa, a, ta): (
-        &Sampled<P>,
-        impl Fn(P::Scalar) -> P,
-        impl Fn(P::Scalar) -> P,
-    ),
-    (sb, b, tb): (
-        &Sampled<P>,
-        impl Fn(P::Scalar) -> P,
-        impl Fn(P::Scalar) -> P,
-    ),
-    gap: P::Scalar,
-) -> Option<(P::Scalar, P::Scalar)> {
-    let d2 = |p: P| p.dot(p);
-    let (pa, pb) = (&sa.points, &sb.points);
-    let slack = sa.bend + sb.bend;
-    let halves = sa.half + sb.half;
-    let corner: [[P::Scalar; SAMPLES + 1]; SAMPLES + 1] =
-        core::array::from_fn(|k| core::array::from_fn(|l| d2(pa[k] - pb[l])));
-    // Each chord pair's squared distance and nearest parameters, once measured.
-    let mut chords = [[None; SAMPLES]; SAMPLES];
-    let mut best: Option<(P::Scalar, usize, usize)> = None;
-    // Chords this far apart hold the spans apart.
-    let far = gap + slack;
-    // Farther than this, a chord pair neither touches nor beats the nearest by the bends.
-    let mut limit = far;
-    for i in 0..SAMPLES {
-        for j in 0..SAMPLES {
-            // Every point of a chord is within half of it from one of its ends.
-            let near = corner[i][j]
-                .min(corner[i + 1][j])
-                .min(corner[i][j + 1])
-                .min(corner[i + 1][j + 1]);
-            let reach = limit + halves;
-            if near >= reach * reach {
-                continue;
-            }
-            let (s, t, d) = segments_nearest((pa[i], pa[i + 1]), (pb[j], pb[j + 1]));
-            chords[i][j] = Some((d, s, t));
-            if best.is_none_or(|(kept, _, _)| d < kept) {
-                best = Some((d, i, j));
-                limit = limit.min(d.sqrt() + slack);
-            }
-        }
-    }
-    let (d, i, j) = best?;
-    if d >= far * far {
-        return None;
-    }
-    let param = |k: usize, s: P::Scalar| {
-        (P::Scalar::from_i16(k as i16) + s) / P::Scalar::from_i16(SAMPLES as i16)
-    };
-    let seed = |k: usize, l: usize| chords[k][l].map(|(_, s, t)| (param(k, s), param(l, t)));
-    let (sa2, sb2) = (sa.second, sb.second);
-    let a = (&a, &ta, &|u| sa2[0] + sa2[1] * u);
-    let b = (&b, &tb, &|v| sb2[0] + sb2[1] * v);
-    let (found, mut u, mut v) = refine(a, b, seed(i, j)?);
-    // The nearest chord pair that is no neighbour of the first, refined when its bound could
-    // beat what the first found.
-    let mut other: Option<(P::Scalar, usize, usize)> = None;
-    for (k, row) in chords.iter().enumerate() {
-        for (l, c) in row.iter().enumerate() {
-            if let Some((dc, _, _)) = *c
-                && (k.abs_diff(i) >= 2 || l.abs_diff(j) >= 2)
-                && other.is_none_or(|(kept, _, _)| dc < kept)
-            {
-                other = Some((dc, k, l));
-            }
-        }
-    }
-    if let Some((dc, k, l)) = other {
-        let bound = dc.sqrt() - slack;
-        if let Some(start) =
-            seed(k, l).filter(|_| bound <= P::Scalar::ZERO || bound * bound < found)
-        {
-            let (e, nu, nv) = refine(a, b, start);
-            if e < found {
-                (u, v) = (nu, nv);
-            }
-        }
-    }
-    Some((u, v))
-}
-
-/// Newton steps from `(u, v)` on half the squared distance between the points of two spans,
-/// each given as its point, tangent and second derivative at a parameter: the full Hessian
-/// (curvature terms included, so two arcs side by side or bending away converge where
-/// Gauss-Newton stalls), its least eigenvalue raised to 1/1024 of the tangents' squared
-/// lengths, a parameter held at `[0, 1]`'s bound where the slope or the step pushes out of
-/// it, and the step shortened to stay in `[0, 1]²` (a clamped step need not descend). A step that does not bring the points nearer is cut to the least of the
-/// parabola through the distance there, at the start and the start's slope (to between
-/// 1/10 and 1/2 of it), up to [`CUTS`] times. At most [`NEWTON_STEPS`] steps, stopped once
-/// one moves less than 1/4096 of a span. Returns the squared distance and the parameters of
-/// the nearest pair met.
-fn refine<P: Point>(
-    (a, ta, sa): (
-        &impl Fn(P::Scalar) -> P,
-        &impl Fn(P::Scalar) -> P,
-        &impl Fn(P::Scalar) -> P,
-    ),
-    (b, tb, sb): (
-        &impl Fn(P::Scalar) -> P,
-        &impl Fn(P::Scalar) -> P,
-        &impl Fn(P::Scalar) -> P,
-    ),
-    (mut u, mut v): (P::Scalar, P::Scalar),
-) -> (P::Scalar, P::Scalar, P::Scalar) {
-    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
-    let half = P::Scalar::ratio(1, 2);
-    let clamp = |x: P::Scalar| x.max(zero).min(one);
-    let small = P::Scalar::ratio(1, 4096);
-    let mut f = a(u) - b(v);
-    let mut e = f.dot(f);
-    'steps: for _ in 0..NEWTON_STEPS {
-        let (da, db) = (ta(u), tb(v));
-        let (aa, bb) = (da.dot(da), db.dot(db));
-        let (gu, gv) = (f.dot(da), -f.dot(db));
-        let (mut huu, mut hvv, huv) = (aa + f.dot(sa(u)), bb - f.dot(sb(v)), -da.dot(db));
-        // Raise the least eigenvalue of [[huu, huv], [huv, hvv]] to a floor: a descent step.
-        let spread = (huu - hvv) * half;
-        let least = (huu + hvv) * half - (spread * spread + huv * huv).sqrt();
-        let raise = ((aa + bb) * P::Scalar::ratio(1, 1024) - least).max(zero);
-        (huu, hvv) = (huu + raise, hvv + raise);
-        // A parameter at a bound stays there when the slope, or the step, pushes out of it.
-        let out = |x: P::Scalar, d: P::Scalar| (x <= zero && d < zero) || (x >= one && d > zero);
-        let mut held = (out(u, -gu), out(v, -gv));
-        let det = huu * hvv - huv * huv;
-        let mut free = None;
-        if held == (false, false) && det > zero {
-            let (du, dv) = ((huv * gv - hvv * gu) / det, (huv * gu - huu * gv) / det);
-            held = (out(u, du), out(v, dv));
-            free = Some((du, dv)).filter(|_| held == (false, false));
-        }
-        let (mut du, mut dv) = match (free, held) {
-            (Some(step), _) => step,
-            (None, (true, false)) if hvv > zero => (zero, -gv / hvv),
-            (None, (false, true)) if huu > zero => (-gu / huu, zero),
-            _ => break,
-        };
-        // Shortened to stay in the box: still a descent direction, as a clamped one is not.
-        let mut scale = one;
-        for (x, d) in [(u, du), (v, dv)] {
-            if x + d > one {
-                scale = scale.min((one - x) / d);
-            } else if x + d < zero {
-                scale = scale.min(x / -d);
-            }
-        }
-        (du, dv) = (du * scale, dv * scale);
-        for _ in 0..=CUTS {
-            let (nu, nv) = (clamp(u + du), clamp(v + dv));
-            let nf = a(nu) - b(nv);
-            let ne = nf.dot(nf);
-            let (su, sv) = (nu - u, nv - v);
-            if ne < e {
-                (u, v, f, e) = (nu, nv, nf, ne);
-                if su.abs().max(sv.abs()) < small {
-                    break 'steps;
-                }
-                continue 'steps;
-            }
-            // The squared distance along the step: `e + slope·s + bend·s²`, `s` in [0, 1].
-            let slope = (gu * su + gv * sv) * P::Scalar::from_i16(2);
-            let bend = ne - e - slope;
-            let cut = if slope < zero && bend > zero {
-                (-slope / (bend + bend))
-                    .max(P::Scalar::ratio(1, 10))
-                    .min(half)
-            } else {
-                half
-            };
-            (du, dv) = (su * cut, sv * cut);
-        }
-        break;
-    }
-    (e, u, v)
-}
-
-/// Steps a span is sampled in to seed the search for its nearest points to another.
-const SAMPLES: usize = 4;
-/// Newton steps from a seed at most.
-const NEWTON_STEPS: usize = 8;
-/// Times a Newton step that does not bring the points nearer is cut at most.
-const CUTS: usize = 4;
 /// The nearest cell-sample pairs the surface search starts from.
 const SEEDS: usize = 2;
 /// Rounds of the pattern search on two surface cells at most: 8 halvings and the moves
 /// between them.
 const CELL_ROUNDS: usize = 16;
-
-/// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the squared
-/// distance (the clamped closest points of the two lines, then each end against the other
-/// segment; no root).
-fn segments_nearest<P: Point>(
-    (p0, p1): (P, P),
-    (q0, q1): (P, P),
-) -> (P::Scalar, P::Scalar, P::Scalar) {
-    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
-    let clamp = |x: P::Scalar| x.max(zero).min(one);
-    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
-    let (a, b, e) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
-    let (c, f) = (d1.dot(r), d2.dot(r));
-    // The parameter nearest a point on each segment: its projection over the squared length
-    // (one division a segment; a point segment has only its start).
-    let (over_a, over_e) = (
-        if a > zero { one / a } else { zero },
-        if e > zero { one / e } else { zero },
-    );
-    let at = |s: P::Scalar, t: P::Scalar| {
-        let d = p0 + d1 * s - (q0 + d2 * t);
-        (s, t, d.dot(d))
-    };
-    // Each end against the other segment: `(p·d)` of the end less that segment's start.
-    let mut best = at(zero, clamp(f * over_e));
-    for candidate in [
-        at(one, clamp((f + b) * over_e)),
-        at(clamp(-c * over_a), zero),
-        at(clamp((b - c) * over_a), one),
-    ] {
-        if candidate.2 < best.2 {
-            best = candidate;
-        }
-    }
-    let denom = a * e - b * b;
-    if denom > zero && e > zero {
-        let s = clamp((b * f - c * e) / denom);
-        let t = clamp((b * s + f) * over_e);
-        let inner = at(s, t);
-        if inner.2 < best.2 {
-            best = inner;
-        }
-    }
-    best
-}

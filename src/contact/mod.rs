@@ -78,7 +78,9 @@ use core::cell::Cell;
 pub mod collider;
 mod drawn;
 mod itself;
+mod memory;
 mod reach;
+mod span_pairs;
 mod step;
 
 use crate::curves::smooth::{Smoothed, Smoothing};
@@ -88,6 +90,7 @@ use crate::{Aabb, Error, Point, Scalar};
 use collider::Collider;
 pub(crate) use drawn::DrawnSpans;
 use drawn::{SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
+pub(crate) use memory::PairMemory;
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
@@ -181,7 +184,17 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the spans' exact tangents and curvatures from the nearest chord pair, and from a
     /// second one where the spans could come near in two places; an exact
     /// segment-to-segment distance for straight spans) and a push through the particles
-    /// that weigh in both points; a pile is a stack of such contacts, so colliders and
+    /// that weigh in both points. On a rope's drawn curve, a step keeps what it learns from
+    /// one substep to the next. A span's points move no farther than its control points, so
+    /// self-contact runs in a substep only when some span has moved an eighth of the
+    /// diameter since it last ran, and always in the step's last substep: two spans cannot
+    /// close by more than a quarter of the diameter in between, let alone pass through each
+    /// other, and a pile at rest is kept off itself once a frame. A pair found apart by
+    /// more than the diameter is not searched again while the moves of its spans' control
+    /// points add up to less than that margin, and a pair found near each other in one or
+    /// two places (and by the chords farther everywhere else) is followed from those places
+    /// by Newton steps alone, for at most a diameter of such moves, and while nowhere else
+    /// could come nearer. A pile is a stack of such contacts, so colliders and
     /// self-contact take up to 12 rounds a substep, until no overlap is over 1% of the
     /// diameter. The colliders have the last word: when the last round pushed two spans
     /// apart, the colliders are resolved once more, so that a floor is never passed (two
@@ -191,17 +204,17 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
     /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
-    /// spans closer than the diameter less 2% over 10 s (0.9% to 1.1% less at the closest:
+    /// spans closer than the diameter less 2% over 10 s (0.9% to 1.2% less at the closest:
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
-    /// of an earlier one) and never a particle into the floor; settled in that pile, where
-    /// about 40 pairs of spans are near each other, the floor and self-contact together cost
-    /// 165 to 215 times the rope's bare step (the median and fastest batches of one run;
-    /// 0.24 ms a frame on the development machine), and on average about 210 times while it
-    /// falls into the pile or is whipped round by its held end, 15 times lying straight on
-    /// the floor, and 47 times for a 24-particle rope lying still in a flat spiral: a heap of
-    /// rope is costly, keep its particles few. Section (l) gives the pile for every
-    /// integrator (25 to 186 times its bare step settled, the dearer the integrator's own
-    /// step the less).
+    /// of an earlier one) and never a particle into the floor; settled in those five piles,
+    /// where about 40 pairs of spans are near each other, the floor and self-contact together
+    /// cost 126 times the rope's bare step (125 in the fastest batches of one run; 0.14 ms a
+    /// frame on the development machine), on average 134 times while it falls into the pile
+    /// and 172 times while it is whipped round by its held end, 16 times lying
+    /// straight on the floor, and 20 times for a 24-particle rope lying still in a flat
+    /// spiral: a heap of rope is costly, keep its particles few. Section (l) gives the pile
+    /// for every integrator (10 to 142 times its bare step settled, the dearer the
+    /// integrator's own step the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
@@ -365,6 +378,17 @@ impl<'a, P: Point> Contacts<'a, P> {
         }
     }
 
+    /// Whether self-contact is on and tested on a drawn curve of spans: a step then keeps a
+    /// [`PairMemory`] from one substep to the next.
+    pub(crate) fn remembers(&self) -> bool {
+        let on_curve = match self.touch {
+            Touch::Drawn(_) => true,
+            Touch::DrawnLoop(s) => s != Smoothing::Bezier,
+            Touch::Particles => false,
+        };
+        self.self_friction.is_some() && on_curve
+    }
+
     /// Where the contacts are tested.
     #[inline]
     pub fn touch(&self) -> Touch {
@@ -412,14 +436,14 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// `i` is still joined to particle `i + 1` (`joined[K - 1]`: the last to the first, a
     /// loop's closing spring). A row that came apart is tested piece by piece, each piece's
     /// own curve as [`Rope::draw`](crate::Rope::draw) draws it (a lone particle as a point),
-    /// so no curve bridges a cut.
+    /// so no curve bridges a cut. `memory` serves the whole row's self-contact (see
+    /// [`PairMemory`]), kept by the caller from one substep to the next.
     pub(crate) fn resolve_curve<const K: usize>(
         &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
+        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         times: (P::Scalar, P::Scalar),
         joined: &[bool; K],
+        memory: Option<&mut PairMemory<P, K>>,
     ) {
         if self.colliders.is_empty() && self.self_friction.is_none() {
             return;
@@ -437,23 +461,24 @@ impl<'a, P: Point> Contacts<'a, P> {
                 (Smoothing::Polyline, closed, false)
             }
         };
-        let resolve =
-            |pos: &mut [P; K], vel: &mut [P; K], w: &[P::Scalar; K], drawn: &mut Smoothed<P, K>| {
-                if on_curve {
-                    self.resolve_spans(pos, vel, w, times, drawn);
-                } else {
-                    // The particles out of the colliders, the segments off each other; the
-                    // colliders have the last word.
-                    let last = self.rounds(|| {
-                        self.resolve_particles(pos, vel, w, times);
-                        drawn.rebuild(pos, (0, K - 1))?;
-                        self.resolve_self(pos, vel, w, times.0, drawn)
-                    });
-                    if last {
-                        self.resolve_particles(pos, vel, w, times);
-                    }
+        let resolve = |(pos, vel, w): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+                       drawn: &mut Smoothed<P, K>,
+                       memory: Option<&mut PairMemory<P, K>>| {
+            if on_curve {
+                self.resolve_spans((pos, vel, w), times, drawn, memory);
+            } else {
+                // The particles out of the colliders, the segments off each other; the
+                // colliders have the last word.
+                let last = self.rounds(|| {
+                    self.resolve_particles(pos, vel, w, times);
+                    drawn.rebuild(pos, (0, K - 1))?;
+                    self.resolve_self((&mut *pos, &mut *vel, w), times.0, drawn, None)
+                });
+                if last {
+                    self.resolve_particles(pos, vel, w, times);
                 }
-            };
+            }
+        };
         let whole = joined[..K - 1].iter().all(|&j| j);
         if whole && (!closed || joined[K - 1]) {
             let curve = if closed {
@@ -462,7 +487,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 Smoothed::open(smoothing, pos)
             };
             if let Ok(mut drawn) = curve {
-                resolve(pos, vel, inv_mass, &mut drawn);
+                resolve((pos, vel, inv_mass), &mut drawn, memory);
             }
             return;
         }
@@ -487,33 +512,57 @@ impl<'a, P: Point> Contacts<'a, P> {
             let Ok(mut drawn) = Smoothed::open_first(smoothing, &piece.0, m) else {
                 continue;
             };
-            resolve(&mut piece.0, &mut piece.1, &piece.2, &mut drawn);
+            resolve((&mut piece.0, &mut piece.1, &piece.2), &mut drawn, None);
             pos[run.clone()].copy_from_slice(&piece.0[..m]);
             vel[run].copy_from_slice(&piece.1[..m]);
         }
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
-    /// docs), redrawing the spans each correction moved, then off itself if self-contact is on.
+    /// docs), redrawing the spans each correction moved, then off itself if self-contact is on
+    /// (with what `memory` holds apart).
     pub(crate) fn resolve_spans<const K: usize>(
         &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
+        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         (h, lag): (P::Scalar, P::Scalar),
         curve: &mut impl DrawnSpans<P, K>,
+        mut memory: Option<&mut PairMemory<P, K>>,
     ) {
+        if !self.self_due(memory.as_deref_mut(), curve, lag) {
+            self.resolve_colliders((pos, vel, inv_mass), (h, lag), curve);
+            return;
+        }
         let last = self.rounds(|| {
-            if !self.resolve_colliders(pos, vel, inv_mass, (h, lag), curve) {
+            let parts = (&mut *pos, &mut *vel, inv_mass);
+            if !self.resolve_colliders(parts, (h, lag), curve) {
                 return None;
             }
-            self.resolve_self(pos, vel, inv_mass, h, curve)
+            let memory = memory.as_deref_mut();
+            let parts = (&mut *pos, &mut *vel, inv_mass);
+            self.resolve_self(parts, h, curve, memory)
         });
         // Self-contact's last pushes may reach into a collider: the colliders have the last
         // word (a floor is never passed; two spans may stay within the rounds' tolerance).
         if last {
-            self.resolve_colliders(pos, vel, inv_mass, (h, lag), curve);
+            self.resolve_colliders((pos, vel, inv_mass), (h, lag), curve);
         }
+        if let Some(memory) = memory {
+            memory.checked(curve);
+        }
+    }
+
+    /// Whether self-contact runs in this substep, `lag` seconds before the step's end: when
+    /// it is on, and `memory` says it is due ([`PairMemory::due`]; without a memory, every
+    /// substep).
+    fn self_due<const K: usize>(
+        &self,
+        memory: Option<&mut PairMemory<P, K>>,
+        curve: &impl DrawnSpans<P, K>,
+        lag: P::Scalar,
+    ) -> bool {
+        let gap = self.thickness + self.thickness;
+        self.self_friction.is_some()
+            && memory.is_none_or(|m| m.due(curve, gap, lag <= P::Scalar::ZERO))
     }
 
     /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
@@ -540,9 +589,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// undoes it).
     fn resolve_colliders<const K: usize>(
         &self,
-        pos: &mut [P; K],
-        vel: &mut [P; K],
-        inv_mass: &[P::Scalar; K],
+        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         (h, lag): (P::Scalar, P::Scalar),
         curve: &mut impl DrawnSpans<P, K>,
     ) -> bool {
@@ -571,12 +618,12 @@ impl<'a, P: Point> Contacts<'a, P> {
                     continue;
                 };
                 let body = self.body(k, collider);
-                let Some((dx, dv, moved)) = self.response(collider, body, (x, v, w), (h, shift))
+                let Some((dx, dv, shifted)) = self.response(collider, body, (x, v, w), (h, shift))
                 else {
                     continue;
                 };
                 if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
-                    self.report(k, given, moved);
+                    self.report(k, given, shifted);
                     if curve.rebuild(pos, weights.ends()).is_none() {
                         return false;
                     }

@@ -3,7 +3,7 @@
 use crate::error::{invalid, out_of_range};
 use core::ops::{Deref, DerefMut};
 
-use crate::contact::{Contacts, Touch};
+use crate::contact::{Contacts, PairMemory, Touch};
 use crate::curves::smooth::{self, Smoothing};
 use crate::error::{check_points, check_positive};
 use crate::geometry::catenary::Catenary;
@@ -254,9 +254,43 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
             true => whole || springs.joins(i, i + 1),
             false => closing,
         });
+        if contacts.remembers() {
+            self.step_remembering(dt, forces, contacts, &joined)
+        } else {
+            self.step_curve(dt, forces, contacts, &joined, None)
+        }
+    }
+
+    /// [`step_touching`](Self::step_touching) with self-contact on the drawn curve: what it
+    /// learns in one substep serves the next ([`PairMemory`]), kept in this function's own
+    /// stack frame so that a step without it has no room to pay for.
+    #[inline(never)]
+    fn step_remembering<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+        joined: &[bool; N],
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let mut memory = PairMemory::new();
+        self.step_curve(dt, forces, contacts, joined, Some(&mut memory))
+    }
+
+    /// A step with the contacts of the drawn curve (`joined`: which particles are joined to
+    /// the next), self-contact remembering in `memory`: one copy for both callers.
+    #[inline(never)]
+    fn step_curve<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+        joined: &[bool; N],
+        mut memory: Option<&mut PairMemory<P, N>>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
         self.system
             .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
-                contacts.resolve_curve(&mut state.pos, &mut state.vel, inv_mass, times, &joined)
+                let parts = (&mut state.pos, &mut state.vel, inv_mass);
+                contacts.resolve_curve(parts, times, joined, memory.as_deref_mut())
             })
     }
 

@@ -3,6 +3,7 @@
 //! substeps.
 
 use super::*;
+use crate::contact::PairMemory;
 
 impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
     /// The new velocities `w` of one backward Euler step of `h` from `x0`, `v0` with the
@@ -569,6 +570,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let saved = (self.pos, self.vel, self.time, self.history);
         let drag = self.settings.damping;
         let (mut saturated, mut converged) = (false, true);
+        // What self-contact learns in one substep serves the next.
+        let mut memory = PairMemory::new();
         for step in 0..n {
             let mut added = [P::default(); K];
             let mut out = Accelerations {
@@ -612,7 +615,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let mut curve = Spans::new(&self.ext, &self.pos);
                 let (pos, vel) = (&mut self.pos, &mut self.vel);
                 contacts.advance_bodies(h);
-                contacts.resolve_spans(pos, vel, &self.inv_load, (h, lag), &mut curve);
+                let parts = (pos, vel, &self.inv_load);
+                contacts.resolve_spans(parts, (h, lag), &mut curve, Some(&mut memory));
             }
         }
         let bounds = self.settings.bounds;
