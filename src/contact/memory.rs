@@ -128,11 +128,19 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         };
         self.read(a, ca);
         self.read(b, cb);
-        let moved = self.travel[a] + self.travel[b];
-        match self.find((a, b)).map(|k| self.pairs[a][k]) {
-            Some(Some(p)) if moved < p.until => p.near.map_or(Recall::Apart, Recall::Near),
+        let (Some(moved), Some(k)) = (self.moved((a, b)), self.find((a, b))) else {
+            return Recall::Unknown;
+        };
+        match self.pairs[a][k] {
+            Some(p) if moved < p.until => p.near.map_or(Recall::Apart, Recall::Near),
             _ => Recall::Unknown,
         }
+    }
+
+    /// How far spans `a` and `b` have moved since the step began, together (`None` past the
+    /// `K` spans).
+    fn moved(&self, (a, b): (usize, usize)) -> Option<P::Scalar> {
+        Some(*self.travel.get(a)? + *self.travel.get(b)?)
     }
 
     /// Where pair `(a, b)` is kept in span `a`'s row, if it is.
@@ -152,8 +160,9 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         margin: P::Scalar,
         near: Option<Places<P::Scalar>>,
     ) {
-        let slot = self.find((a, b));
-        let (Some(row), Ok(other)) = (self.pairs.get_mut(a), u16::try_from(b)) else {
+        let (slot, moved) = (self.find((a, b)), self.moved((a, b)));
+        let (Some(row), Ok(other), Some(moved)) = (self.pairs.get_mut(a), u16::try_from(b), moved)
+        else {
             return;
         };
         if margin <= P::Scalar::ZERO {
@@ -162,7 +171,7 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
             }
             return;
         }
-        let until = self.travel[a] + self.travel[b] + margin;
+        let until = moved + margin;
         let soonest = |k: usize| row[k].map_or(P::Scalar::ZERO, |p| p.until);
         let k = slot
             .or_else(|| row.iter().position(Option::is_none))

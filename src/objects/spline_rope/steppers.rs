@@ -571,7 +571,9 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
         let drag = self.settings.damping;
         let (mut saturated, mut converged) = (false, true);
         // What self-contact learns in one substep serves the next.
-        let mut memory = PairMemory::new();
+        let mut memory = contacts
+            .filter(|c| c.remembers())
+            .map(|_| PairMemory::new());
         for step in 0..n {
             let mut added = [P::default(); K];
             let mut out = Accelerations {
@@ -616,7 +618,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let (pos, vel) = (&mut self.pos, &mut self.vel);
                 contacts.advance_bodies(h);
                 let parts = (pos, vel, &self.inv_load);
-                contacts.resolve_spans(parts, (h, lag), &mut curve, Some(&mut memory));
+                contacts.resolve_spans(parts, (h, lag), &mut curve, memory.as_mut());
             }
         }
         let bounds = self.settings.bounds;
