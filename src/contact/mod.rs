@@ -520,7 +520,8 @@ impl<'a, P: Point> Contacts<'a, P> {
 
     /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
     /// docs), redrawing the spans each correction moved, then off itself if self-contact is on
-    /// (with what `memory` holds apart).
+    /// and due ([`PairMemory::due`]; every substep without a memory), `lag` seconds before
+    /// the step's end.
     pub(crate) fn resolve_spans<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
@@ -528,7 +529,9 @@ impl<'a, P: Point> Contacts<'a, P> {
         curve: &mut impl DrawnSpans<P, K>,
         mut memory: Option<&mut PairMemory<P, K>>,
     ) {
-        if !self.self_due(memory.as_deref_mut(), curve, lag) {
+        let (gap, ending) = (self.thickness + self.thickness, lag <= P::Scalar::ZERO);
+        let due = |m: &mut PairMemory<P, K>| m.due(curve, gap, ending);
+        if self.self_friction.is_none() || !memory.as_deref_mut().is_none_or(due) {
             self.resolve_colliders((pos, vel, inv_mass), (h, lag), curve);
             return;
         }
@@ -549,20 +552,6 @@ impl<'a, P: Point> Contacts<'a, P> {
         if let Some(memory) = memory {
             memory.checked(curve);
         }
-    }
-
-    /// Whether self-contact runs in this substep, `lag` seconds before the step's end: when
-    /// it is on, and `memory` says it is due ([`PairMemory::due`]; without a memory, every
-    /// substep).
-    fn self_due<const K: usize>(
-        &self,
-        memory: Option<&mut PairMemory<P, K>>,
-        curve: &impl DrawnSpans<P, K>,
-        lag: P::Scalar,
-    ) -> bool {
-        let gap = self.thickness + self.thickness;
-        self.self_friction.is_some()
-            && memory.is_none_or(|m| m.due(curve, gap, lag <= P::Scalar::ZERO))
     }
 
     /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
