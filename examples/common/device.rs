@@ -20,6 +20,9 @@ pub trait Meter {
     fn count_long<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
         self.count(f)
     }
+    /// The end of a frame [`meter_frames_checked`] metered (what a browser's meter reports
+    /// frame by frame).
+    fn frame_done(&mut self) {}
 }
 
 /// What a run reports.
@@ -175,6 +178,7 @@ pub fn meter_frames_checked<T, S: Scalar>(
         let (sampled, m) = meter.count(|| sample(scene));
         costs.substeps = stepped?.substeps;
         sampled?;
+        meter.frame_done();
         check(scene);
         total = total.saturating_add(n + m);
         let costliest = costs.step + costs.sample;
@@ -674,6 +678,52 @@ pub struct NoMeter;
 impl Meter for NoMeter {
     fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
         (f(), 0)
+    }
+}
+
+/// In a browser (wasm32): frames timed by the page's clock, `performance.now()` through the
+/// imports `web/devices.mjs` gives (`meter.now`, in milliseconds), each frame's time handed
+/// to the page (`meter.frame`) as it ends; `run(format)` (0 Q16.16, 1 f32) plays the
+/// example and returns its checksum, or -1 when the simulation failed.
+#[cfg(target_arch = "wasm32")]
+mod browser {
+    use super::*;
+
+    #[link(wasm_import_module = "meter")]
+    unsafe extern "C" {
+        /// `performance.now()`: milliseconds.
+        fn now() -> f64;
+        /// A metered frame's time, in milliseconds.
+        fn frame(ms: f64);
+    }
+
+    /// The time of the counts since the last frame ended (ms); counts are in nanoseconds.
+    struct Clock(f64);
+
+    impl Meter for Clock {
+        fn count<R>(&mut self, f: impl FnOnce() -> R) -> (R, u32) {
+            // SAFETY: imports without arguments or memory access; the page provides them.
+            let start = unsafe { now() };
+            let result = f();
+            let ms = unsafe { now() } - start;
+            self.0 += ms;
+            (result, (ms * 1e6) as u32)
+        }
+
+        fn frame_done(&mut self) {
+            // SAFETY: as above; the page records the value.
+            unsafe { frame(self.0) };
+            self.0 = 0.0;
+        }
+    }
+
+    #[unsafe(no_mangle)]
+    extern "C" fn run(format: u32) -> i64 {
+        let report = match format {
+            0 => crate::simulate::<Q16>(&mut Clock(0.0), q16_bits),
+            _ => crate::simulate::<f32>(&mut Clock(0.0), f32_bits),
+        };
+        report.map_or(-1, |r| i64::from(r.checksum))
     }
 }
 

@@ -4,7 +4,7 @@
 //!
 //! `cargo build --release -p dunas-golden --target wasm32-unknown-unknown`, then
 //! `node web/golden.mjs`. It also plays the scene a frame a call (`begin`, `advance`), so
-//! that `node web/golden.mjs --costs` can time each frame in V8 (Chromium's engine).
+//! that `web/devices.mjs` can time each frame in Chromium.
 
 #[path = "../../../examples/common/golden.rs"]
 mod golden;
