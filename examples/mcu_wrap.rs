@@ -10,7 +10,10 @@
 //! pushed the rope), `stretch_permille=` (the rope's largest stretch over the run) and
 //! `inside_permille=` (the deepest a drawn point went inside the box, in thousandths of
 //! the rope's thickness), the last two measured after each frame, outside the metered
-//! step and curve:
+//! step and curve, and `unconverged_frames=` (frames whose step reported
+//! `converged: false`: the player pulls the rope round the box's corners, and the links,
+//! which hold it, take back part of what the contacts did; every frame with the curve
+//! inside the box is one):
 //!
 //! `cargo run --release --target thumbv6m-none-eabi --example mcu_wrap` (Q16.16, micro:bit)
 //! `cargo run --release --example mcu_wrap` (Q16.16 on the host) or `... -- f32`.
@@ -25,12 +28,13 @@ use dunas::contact::Push;
 use dunas::integrator::DirectChain;
 use dunas::prelude::*;
 
-/// The rope, its player, the box, the drawn curve, and the largest stretch and depth so far.
+/// The rope, its player, the box, the drawn curve, the largest stretch and depth so far,
+/// and the frames touching and unconverged.
 type Scene<S> = (
     Rope<Vec2<S>, 12, 12, DirectChain>,
     [Vec2<S>; device::CURVE],
     (S, S),
-    u32,
+    (u32, u32),
 );
 
 /// The rope falling onto the box and swinging under it.
@@ -69,20 +73,21 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         rope,
         [Vec2::new(S::ZERO, S::ZERO); device::CURVE],
         (S::ZERO, S::ZERO),
-        0,
+        (0, 0),
     );
     let dt = S::ratio(1, 60);
     let costs = device::meter_frames_checked(
         meter,
         &mut scene,
         (
-            |(rope, _, _, touching)| {
+            |(rope, _, _, (touching, unconverged))| {
                 let mut push = [Push::default()];
                 let contacts =
                     Contacts::new(&block, thickness, Touch::Drawn(Smoothing::CatmullRom))?
                         .with_pushes(&mut push);
                 let info = rope.step_touching(dt, (), &contacts);
                 *touching += u32::from(push[0].impulse != Vec2::new(S::ZERO, S::ZERO));
+                *unconverged += u32::from(info.as_ref().is_ok_and(|i| !i.converged));
                 info
             },
             |(rope, curve, _, _)| rope.sample(Smoothing::CatmullRom, curve).map(drop),
@@ -99,7 +104,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
         ),
         false,
     )?;
-    let (rope, curve, (stretch, inside), touching) = scene;
+    let (rope, curve, (stretch, inside), (touching, unconverged)) = scene;
     let view = dunas::ascii::View::new(Vec2::new(m(-11), m(1)), frac(11, 20), frac(6, 7))?;
     let frame = device::ascii_frame(|canvas| {
         canvas.polyline(&view, &curve, b'#');
@@ -120,6 +125,7 @@ pub fn simulate<S: Scalar>(meter: &mut impl Meter, bits: fn(S) -> u32) -> Result
     report.touching_frames = Some(touching);
     report.stretch_permille = Some((stretch * m(1000)).floor_i32().max(0) as u32);
     report.inside_permille = Some((inside / thickness * m(1000)).floor_i32().max(0) as u32);
+    report.unconverged_frames = Some(unconverged);
     Ok(report)
 }
 

@@ -55,6 +55,9 @@ pub struct Report {
     /// The deepest a drawn point went inside a collider over the run, in thousandths of
     /// the rope's thickness, where the example measures it.
     pub inside_permille: Option<u32>,
+    /// Frames whose step reported it did not keep its method's promise
+    /// (`StepInfo::converged` false), where the example counts them.
+    pub unconverged_frames: Option<u32>,
     /// The scripted scene's folded state checksums (`common/golden.rs`), where the example
     /// runs it.
     pub golden: Option<u64>,
@@ -269,6 +272,7 @@ pub fn report(checksum: u32, costs: &Costs, frame: [u8; W * H]) -> Report {
         area_permille: None,
         closest_permille: None,
         inside_permille: None,
+        unconverged_frames: None,
         golden: None,
         mean_frame_instructions: costs.mean,
         frame,
@@ -642,6 +646,9 @@ mod board {
                 if let Some(n) = r.inside_permille {
                     put_number(b"inside_permille", n, false);
                 }
+                if let Some(n) = r.unconverged_frames {
+                    put_number(b"unconverged_frames", n, false);
+                }
                 if let Some(n) = r.golden {
                     put_hex64(b"golden", n);
                 }
@@ -774,6 +781,9 @@ pub fn host_main(q16: Simulation<Q16>, f32: Simulation<f32>) {
             }
             if let Some(n) = r.inside_permille {
                 println!("inside_permille={n}");
+            }
+            if let Some(n) = r.unconverged_frames {
+                println!("unconverged_frames={n}");
             }
             if let Some(n) = r.golden {
                 println!("golden={n:016x}");

@@ -42,7 +42,8 @@ pub struct StepInfo<S> {
     /// `false` when the step did not keep what its method promises: an iterating solve
     /// ended beyond [`TOLERANCE`](crate::integrator::TOLERANCE) (0.1%) after its last
     /// iteration (and, for a `DirectChain`, its last halving), or a link that the method
-    /// holds ended more than that from its length, after the contacts (see
+    /// holds ended more than that from its length after the contacts, or, holding its
+    /// links, it took back more than that of what the contacts did (see
     /// [`residual`](Self::residual) and [`stretch`](Self::stretch)). The step is kept.
     /// `true` for the methods that do not iterate (the explicit ones).
     pub converged: bool,
@@ -61,7 +62,11 @@ pub struct StepInfo<S> {
     ///   backward Euler's equations (its force imbalance times `h²` over its mass), over
     ///   the shortest rest length of a spring with a free end;
     /// - [`DirectChain`](crate::integrator::DirectChain): the largest
-    ///   `|length − goal| / rest` of a link (its stretch when inextensible);
+    ///   `|length − goal| / rest` of a link (its stretch when inextensible) and, when
+    ///   inextensible, how far its links took a particle back along the push the last
+    ///   contacts gave it, over the shortest link's rest length (about how deep the drawn
+    ///   curve went back into what it touches: a heavy load pulling a rope round a box's
+    ///   corner);
     /// - the explicit methods: 0.
     pub residual: S,
     /// `true` when the object slept through the step ([`Sleep`](crate::Sleep)):

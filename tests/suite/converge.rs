@@ -277,3 +277,66 @@ fn direct_chain_swings_a_heavy_bob_as_a_pendulum() {
         );
     }
 }
+
+/// A `DirectChain` rope whose links take back what its contacts did says so: a 10 m, 2 kg
+/// rope of 12 particles with a 70 kg player on its end, let go level above a box 3
+/// particle spacings wide (`examples/mcu_wrap.rs`, in f32), at the catapult's setting (one
+/// solve of 2 iterations a frame) and at the defaults. The player pulls the rope round the
+/// box's corners, and the links, which hold it, pull its drawn curve back into the box
+/// after the contacts have pushed it out. Every frame that ends with a drawn point inside
+/// the box reports `converged: false`, with a residual of at least half the depth over
+/// the particle spacing (it went unreported: `converged` with the curve 0.7 m deep).
+#[test]
+fn direct_chain_says_when_its_links_pull_the_rope_into_what_it_touches() {
+    use dunas::collider::Collider;
+    use dunas::contact::{Contacts, Touch};
+    use dunas::integrator::DirectChain;
+    let catapult = DirectChain {
+        iterations: 2,
+        substeps: 1,
+        ..DirectChain::default()
+    };
+    for solver in [catapult, DirectChain::default()] {
+        let settings = Settings {
+            gravity: Vec2::new(0.0f32, -9.81),
+            damping: 0.1,
+            ..Settings::default()
+        }
+        .with_integrator(solver);
+        let material = Material {
+            stiffness: 2000.0,
+            damping: 1.0,
+        };
+        let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
+        let mut rope: Rope<Vec2<f32>, 12, 12, DirectChain> =
+            Rope::new(start, end, 2.0, material, settings).unwrap();
+        rope.hang(11, 70.0).unwrap();
+        let (low, high) = (Vec2::new(2.5, -3.5), Vec2::new(2.5 + 30.0 / 11.0, -2.0));
+        let block = [Collider::aabb(low, high).unwrap()];
+        let (thickness, spacing) = (0.05f32, 10.0 / 11.0);
+        let contacts = Contacts::new(&block, thickness, Touch::Drawn(Smoothing::CatmullRom));
+        let contacts = contacts.unwrap();
+        let mut curve = [Vec2::default(); 64];
+        let (mut inside_frames, mut deepest) = (0, 0.0f32);
+        for frame in 0..240 {
+            let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+            let n = rope.sample(Smoothing::CatmullRom, &mut curve).unwrap();
+            let depth = curve[..n]
+                .iter()
+                .map(|&p| -block[0].gap(p))
+                .fold(f32::MIN, f32::max);
+            if depth > 0.0 {
+                inside_frames += 1;
+                deepest = deepest.max(depth);
+                assert!(
+                    !info.converged && info.residual >= 0.5 * depth / spacing,
+                    "{solver:?}, frame {frame}: the curve {depth} m into the box, reported \
+                     converged {} with residual {}",
+                    info.converged,
+                    info.residual
+                );
+            }
+        }
+        eprintln!("{solver:?}: {inside_frames} frames inside the box, at most {deepest} m");
+    }
+}

@@ -46,7 +46,14 @@ use core::cell::Cell;
 /// collider much thinner than the particle spacing can still be pulled through by the links
 /// (a peg of a tenth of the spacing is; one of a third holds the rope,
 /// `direct_chain_rests_on_a_peg`); for thin pegs, use
-/// [`SymplecticEuler`](super::SymplecticEuler).
+/// [`SymplecticEuler`](super::SymplecticEuler). A load far heavier than the rope pulls it
+/// straight across what it wraps, and the links then take back what the contacts did: a
+/// 70 kg player on a 2 kg rope pulls its drawn curve up to 0.7 m into the corner of a box
+/// it wraps (`examples/mcu_wrap.rs`: `inside_permille` of its 5 cm thickness), and such a
+/// step reports it: `converged` false, and in the residual how
+/// far the links took a particle back along its push, over the shortest link
+/// (`converge::direct_chain_says_when_its_links_pull_the_rope_into_what_it_touches`: every
+/// frame with the curve in the box says so).
 ///
 /// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
 /// the defaults (4 solves of up to 4 iterations a 60 Hz frame), one substep a frame at any
@@ -177,7 +184,8 @@ impl Integrator for DirectChain {
             settled.set(solved.converged);
             solved
         };
-        // The stretch the last solve's contacts left, when they moved a particle.
+        // The stretch the last solve's contacts left, and how far the links took back what
+        // they did, when they moved a particle.
         let mut after_contacts = None;
         let mut touch = |state: &mut State<P, Sh>, times| {
             if !self.inextensible {
@@ -186,7 +194,7 @@ impl Integrator for DirectChain {
             let before = state.pos;
             touch(state, times);
             after_contacts = self.hold_after_contacts(model, state, &before);
-            if let Some(stretch) = after_contacts {
+            if let Some((stretch, _)) = after_contacts {
                 settled.set(settled.get() && stretch <= tolerance_of(DirectChain::TOLERANCE));
             }
         };
@@ -199,10 +207,11 @@ impl Integrator for DirectChain {
             &mut touch,
             solve,
         );
-        if let Some(stretch) = after_contacts {
-            solved.converged &= stretch <= tolerance_of(DirectChain::TOLERANCE);
+        if let Some((stretch, undone)) = after_contacts {
+            let off = stretch.max(undone);
+            solved.converged &= off <= tolerance_of(DirectChain::TOLERANCE);
             solved.stretch = stretch;
-            solved.residual = solved.residual.max(stretch);
+            solved.residual = solved.residual.max(off);
         }
         solved
     }
@@ -213,16 +222,19 @@ impl DirectChain {
     /// a link beyond the tolerance, the links are brought back, positions only, with each
     /// particle a contact moved 4 times as heavy, so that the links and the contacts mostly
     /// agree at the end of the solve (made much heavier, a rope pulled over a box's corner
-    /// by a heavy load would fight the box's faces, stretching further each frame); the
-    /// links' stretch then, or `None` when no contact moved a particle (at no cost). A
-    /// square root a link when one did. Out of line: most solves touch nothing.
+    /// by a heavy load would fight the box's faces, stretching further each frame). Returns
+    /// the links' stretch then and how much of the contacts' work they undid: the farthest
+    /// a particle was taken back along its push, over the shortest link's rest length (about
+    /// how deep the curve went back in); `None` when no contact moved a particle (at no
+    /// cost). A square root a link and a particle when one did. Out of line: most solves
+    /// touch nothing.
     #[inline(never)]
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
         before: &Sh::PerParticle<P>,
-    ) -> Option<P::Scalar> {
+    ) -> Option<(P::Scalar, P::Scalar)> {
         let (x, before) = (Sh::flat(&state.pos), Sh::flat(before));
         if x == before {
             return None;
@@ -235,7 +247,27 @@ impl DirectChain {
         }
         let mut links = Links::<P, Sh>::new(model, None);
         let iterations = self.iterations.max(1);
-        Some(links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations))
+        let pushed = state.pos;
+        let stretch = links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations);
+        let zero = P::Scalar::ZERO;
+        let mut undone = zero;
+        let (x, pushed) = (Sh::flat(&state.pos), Sh::flat(&pushed));
+        for ((&x, &p), &b) in x.iter().zip(pushed).zip(before) {
+            let (push, inverse) = (p - b).length_and_inverse();
+            if push > zero {
+                undone = undone.max((p - x).dot(p - b) * inverse);
+            }
+        }
+        let shortest = (Sh::flat(&links.rest).iter().zip(Sh::flat(&links.linked)))
+            .filter(|&(_, &linked)| linked)
+            .fold(None, |least: Option<P::Scalar>, (&rest, _)| {
+                Some(least.map_or(rest, |least| least.min(rest)))
+            });
+        let undone = match shortest {
+            Some(rest) if rest > zero && undone > zero => undone / rest,
+            _ => zero,
+        };
+        Some((stretch, undone))
     }
 
     /// A share `h` of a step in solves of `h / 2^k`: a solve whose links end beyond the
