@@ -35,7 +35,7 @@ fn drop_after_10_s<const U: usize>(mut cloth: Cloth<Vec3<f64>, U, U, DirectSprin
 fn direct_springs_let_a_stiff_cloth_fall_to_its_balance() {
     for ea in [1e3, 1e4] {
         let small = drop_after_10_s(cloth(ea, DirectSprings::default()));
-        let large = crate::common::hung_cloth::<20>(ea, DirectSprings::default()).unwrap();
+        let large = crate::common::hung_cloth::<20, _>(ea, DirectSprings::default()).unwrap();
         let large = drop_after_10_s(large);
         eprintln!("EA {ea:.0e} N: 8×8 {small:.4} m, 20×20 {large:.4} m");
         for drop in [small, large] {
