@@ -16,7 +16,9 @@
 // clock is not read inside those runs). Every run's checksum must agree.
 //
 // Prints `chromium VERSION`, then a line a run, tab-separated: example, format, checksum,
-// worst (ns), mean of the fastest and of the median run (ns), the `.wasm`'s size (bytes).
+// worst (ns), mean of the fastest and of the median run (ns), the `.wasm`'s size and the
+// stack's high-water mark (bytes; Rust's wasm32 keeps the stack in the first 1 MiB of
+// memory, which the first run paints).
 // Exits 1 when a run fails.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
@@ -37,12 +39,15 @@ const file = (name) => (name === 'mcu_golden'
 
 /** In the page: `timed` runs of example `name` in `format` timed frame by frame (`times`,
  * ms) and `whole` runs timed as a whole only (`total`, ms; the example's clock then reads
- * 0), taken in turn after one run to warm the engine up; each with its checksum. `{ error }`
- * when one fails. */
+ * 0), taken in turn after one run to warm the engine up, each with its checksum, and the
+ * stack's high-water mark in that first run (bytes): `{ runs, stack }`, or `{ error }` when
+ * one fails. */
 async function play({ name, format, timed: frameByFrame, whole, frames }) {
   const module = await WebAssembly.compileStreaming(fetch(`/${name}.wasm`));
   const golden = name === 'mcu_golden';
+  const [STACK_TOP, PAINT] = [1 << 20, 0xa5];
   const runs = [];
+  let stack = 0;
   for (let round = 0, left = [frameByFrame, whole]; left[0] + left[1] > 0; round++) {
     // Frame by frame while more such runs are left than whole ones, and once to warm up.
     const timed = round === 0 || left[0] >= left[1];
@@ -50,6 +55,16 @@ async function play({ name, format, timed: frameByFrame, whole, frames }) {
     const clock = timed ? () => performance.now() : () => 0;
     const meter = { now: clock, frame: (ms) => times.push(ms) };
     const e = (await WebAssembly.instantiate(module, golden ? {} : { meter })).exports;
+    // The warm-up run measures the stack: Rust's wasm32 puts it first in memory, below
+    // its 1 MiB top (where the data begins), so that region is painted and the lowest
+    // byte the run changed is its high-water mark.
+    const memory = new Uint8Array(e.memory.buffer);
+    if (round === 0) {
+      if (!(e.__data_end.value > STACK_TOP && memory.subarray(0, STACK_TOP).every((b) => b === 0))) {
+        return { error: 'the stack is not the first 1 MiB of memory' };
+      }
+      memory.fill(PAINT, 0, STACK_TOP);
+    }
     let checksum = -1;
     const start = performance.now();
     if (golden) {
@@ -70,12 +85,15 @@ async function play({ name, format, timed: frameByFrame, whole, frames }) {
     }
     if (checksum < 0) return { error: 'the simulation failed' };
     if (times.length !== frames) return { error: `${times.length} frames played, not ${frames}` };
-    if (round > 0) {
+    if (round === 0) {
+      const painted = new Uint8Array(e.memory.buffer, 0, STACK_TOP);
+      stack = STACK_TOP - painted.findIndex((b) => b !== PAINT);
+    } else {
       runs.push(timed ? { checksum, times } : { checksum, total });
       left[timed ? 0 : 1] -= 1;
     }
   }
-  return runs;
+  return { runs, stack };
 }
 
 const browser = await chromium.launch({
@@ -109,12 +127,13 @@ try {
   for (const name of examples) {
     const bytes = readFileSync(file(name)).length;
     for (const [format, label] of [[0, 'q16'], [1, 'f32']]) {
-      const runs = await page.evaluate(play, { name, format, timed: TIMED, whole: WHOLE, frames: FRAMES });
-      if (runs.error) {
-        console.error(`${name} (${label}): ${runs.error}`);
+      const played = await page.evaluate(play, { name, format, timed: TIMED, whole: WHOLE, frames: FRAMES });
+      if (played.error) {
+        console.error(`${name} (${label}): ${played.error}`);
         failed = true;
         continue;
       }
+      const { runs, stack } = played;
       const sums = new Set(runs.map((r) => r.checksum));
       if (sums.size !== 1) {
         console.error(`${name} (${label}): the runs disagree: ${[...sums]}`);
@@ -133,7 +152,7 @@ try {
       const means = runs.filter((r) => !r.times).map((r) => r.total / FRAMES).sort((a, b) => a - b);
       const ns = (ms) => (ms * 1e6).toFixed(0);
       const sum = [...sums][0].toString(16).padStart(8, '0');
-      console.log([name, label, sum, ns(worst), ns(means[0]), ns(median(means)), bytes].join('\t'));
+      console.log([name, label, sum, ns(worst), ns(means[0]), ns(median(means)), bytes, stack].join('\t'));
     }
   }
 } finally {
