@@ -50,9 +50,9 @@ use core::cell::Cell;
 /// straight across what it wraps, and the links then take back what the contacts did: a
 /// 70 kg player on a 2 kg rope pulls its drawn curve up to 0.7 m into the corner of a box
 /// it wraps (`examples/mcu_wrap.rs`: `inside_permille` of its 5 cm thickness), and such a
-/// step reports it: `converged` false, and in the residual how
-/// far the links took a particle back along its push, over the shortest link
-/// (`converge::direct_chain_says_when_its_links_pull_the_rope_into_what_it_touches`: every
+/// step reports it: `converged` false, and in the residual how far the links took a
+/// particle back along its push, over the shortest link
+/// (`promises::a_chain_whose_links_pull_the_rope_into_what_it_touches_says_so`: every
 /// frame with the curve in the box says so).
 ///
 /// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
