@@ -62,6 +62,15 @@ fn check<P: Point>(
     }
 }
 
+/// The device catapult's setting: one solve of up to two iterations a frame.
+fn device_chain() -> DirectChain {
+    DirectChain {
+        iterations: 2,
+        substeps: 1,
+        ..DirectChain::default()
+    }
+}
+
 /// A 10 m, 2 kg rope of 12 particles (2 000 N/m, `DirectChain::default()`) with a 70 kg
 /// player on its end, let go level.
 fn player_rope(chain: DirectChain) -> Rope<Vec2<f64>, 12, 12, DirectChain> {
@@ -100,11 +109,7 @@ fn a_long_step_holds_the_links_or_is_refused() {
 /// links' stretch or flagged. (They used to stretch 203% and 1 900%, every frame `Ok`.)
 #[test]
 fn a_chain_under_a_heavy_load_holds_or_says_so() {
-    let device = DirectChain {
-        iterations: 2,
-        substeps: 1,
-        ..DirectChain::default()
-    };
+    let device = device_chain();
     let (worst, flagged) = four_seconds(&mut player_rope(device), 10.0 / 11.0);
     eprintln!("player, 2 iterations: links within {worst:.2e}, {flagged} frames flagged");
     assert!(worst <= 5e-3, "{worst}");
@@ -291,11 +296,7 @@ fn errors_say_what_their_docs_say() {
 /// with the curve 0.7 m deep.)
 #[test]
 fn a_chain_whose_links_pull_the_rope_into_what_it_touches_says_so() {
-    let device = DirectChain {
-        iterations: 2,
-        substeps: 1,
-        ..DirectChain::default()
-    };
+    let device = device_chain();
     let (low, high) = (Vec2::new(2.5, -3.5), Vec2::new(2.5 + 30.0 / 11.0, -2.0));
     let block = [Collider::aabb(low, high).unwrap()];
     let contacts = Contacts::new(&block, 0.05, Touch::Drawn(Smoothing::CatmullRom)).unwrap();
