@@ -1,6 +1,7 @@
 //! What contacts test and move: a drawn curve's spans and a drawn surface's cells, each point
 //! a weighted sum of the particles, and how a correction at a drawn point reaches them.
 
+use crate::curves::curve::clamp_unit;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
 
@@ -98,24 +99,42 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
     ) -> Self {
         let mut dense = [S::ZERO; K];
         curve.weights(span, t, &mut dense);
-        let mut w = Weights {
-            index: [0; K],
-            weight: [S::ZERO; K],
-            len: 0,
-        };
+        let mut w = Self::none();
         for (i, &x) in dense.iter().enumerate() {
             w.push(i, x);
         }
         w
     }
 
-    /// The weights of one point less another's (a particle in both weighs the difference).
-    pub(super) fn minus(&self, other: &Self) -> Self {
-        let mut w = Weights {
+    /// The weights of the point at `u` (clamped to `[0, 1]`) of the straight segment from
+    /// particle `span` to the next (round a loop): what [`of`](Self::of) gives on a
+    /// polyline, without its pass over all `K`.
+    pub(super) fn on_segment(span: usize, u: S) -> Self {
+        let u = clamp_unit(u);
+        let (here, next) = ((span, S::ONE - u), ((span + 1) % K, u));
+        let (first, second) = if next.0 < here.0 {
+            (next, here)
+        } else {
+            (here, next)
+        };
+        let mut w = Self::none();
+        w.push(first.0, first.1);
+        w.push(second.0, second.1);
+        w
+    }
+
+    /// No particle weighs in.
+    fn none() -> Self {
+        Weights {
             index: [0; K],
             weight: [S::ZERO; K],
             len: 0,
-        };
+        }
+    }
+
+    /// The weights of one point less another's (a particle in both weighs the difference).
+    pub(super) fn minus(&self, other: &Self) -> Self {
+        let mut w = Self::none();
         let (mut a, mut b) = (self.entries().peekable(), other.entries().peekable());
         loop {
             match (a.peek().copied(), b.peek().copied()) {
@@ -385,4 +404,31 @@ pub(super) fn deepest_in_cell<P: Point>(
         step = step * half;
     }
     Some((best.0, best.1))
+}
+
+#[cfg(all(test, dunas_floats))]
+mod tests {
+    use super::*;
+    use crate::Vec2;
+
+    /// A segment's two weights are those a polyline's point has, open and round a loop, at
+    /// its ends and between (the particles' order kept).
+    #[test]
+    fn a_segments_weights_are_the_polylines() {
+        let pos: [Vec2<f64>; 6] = core::array::from_fn(|i| Vec2::new(i as f64, (i * i) as f64));
+        let open = Smoothed::open(Smoothing::Polyline, &pos).unwrap();
+        let ring = Smoothed::ring(Smoothing::Polyline, &pos).unwrap();
+        for curve in [open, ring] {
+            for span in 0..curve.span_count() {
+                for u in [-0.5, 0.0, 0.3, 1.0, 1.5] {
+                    let (direct, general) = (
+                        Weights::<f64, 6>::on_segment(span, u),
+                        Weights::of(&curve, span, u),
+                    );
+                    let entries = |w: &Weights<f64, 6>| w.entries().collect::<std::vec::Vec<_>>();
+                    assert_eq!(entries(&direct), entries(&general), "{span} {u}");
+                }
+            }
+        }
+    }
 }

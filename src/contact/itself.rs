@@ -15,7 +15,9 @@ impl<P: Point> Contacts<'_, P> {
     /// first axis and swept, so only spans whose boxes overlap are compared. Narrow phase:
     /// the nearest points of the two spans ([`nearest`], from [`SAMPLES`] + 1 points of each
     /// span taken once for all its pairs; exactly, for the straight segments between the
-    /// particles), found on the curve as the pass began; the pair is measured where the
+    /// particles, and a pair of them no nearer than twice the thickness left there, by
+    /// [`Point::shorter_than`], with no root and no weights), found on the curve as the
+    /// pass began; the pair is measured where the
     /// particles are now (each point a weighted sum of them) and pushed apart along the line
     /// between them, through both spans' particle weights (a particle both spans share moves
     /// by the difference), with its approach stopped and its sliding braked by Coulomb
@@ -125,11 +127,20 @@ impl<P: Point> Contacts<'_, P> {
         } else {
             // Two segments between the particles: their nearest points exactly.
             let ends = |span: usize| (pos[span], pos[(span + 1) % K]);
-            let (u, v, _) = segments_nearest(ends(a), ends(b));
+            let ((p0, p1), (q0, q1)) = (ends(a), ends(b));
+            let (u, v, _) = segments_nearest((p0, p1), (q0, q1));
+            // Apart: no weights to take, no root.
+            if !(p0 + (p1 - p0) * u - (q0 + (q1 - q0) * v)).shorter_than(gap) {
+                return zero;
+            }
             (Near::only((u, v)), false)
         };
         let (u, v) = near.at;
-        let (wa, wb) = (Weights::of(curve, a, u), Weights::of(curve, b, v));
+        let (wa, wb) = if curve.is_straight() {
+            (Weights::on_segment(a, u), Weights::on_segment(b, v))
+        } else {
+            (Weights::of(curve, a, u), Weights::of(curve, b, v))
+        };
         let g = wa.minus(&wb);
         let d = point_of(pos, g.entries());
         let dist = d.length();

@@ -388,8 +388,12 @@ const NEWTON_STEPS: usize = 8;
 /// Times a Newton step that does not bring the points nearer is cut at most.
 const CUTS: usize = 4;
 /// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the squared
-/// distance (the clamped closest points of the two lines, then each end against the other
-/// segment; no root).
+/// distance (no root): the first's parameter where the lines come nearest (its start when
+/// they are parallel), clamped; the second's nearest that point, and past an end that end
+/// and the first's nearest it again. One division, and one a segment. In `Q16` the
+/// parameters come from the vectors scaled by a power of two (exactly) so that their
+/// largest coordinate is about 1: short segments' products of dot products would keep few
+/// bits.
 pub(super) fn segments_nearest<P: Point>(
     (p0, p1): (P, P),
     (q0, q1): (P, P),
@@ -397,39 +401,45 @@ pub(super) fn segments_nearest<P: Point>(
     let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
     let clamp = |x: P::Scalar| x.max(zero).min(one);
     let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
-    let (a, b, e) = (d1.dot(d1), d1.dot(d2), d2.dot(d2));
-    let (c, f) = (d1.dot(r), d2.dot(r));
-    // The parameter nearest a point on each segment: its projection over the squared length
-    // (one division a segment; a point segment has only its start).
-    let (over_a, over_e) = (
-        if a > zero { one / a } else { zero },
-        if e > zero { one / e } else { zero },
-    );
-    let at = |s: P::Scalar, t: P::Scalar| {
-        let d = p0 + d1 * s - (q0 + d2 * t);
-        (s, t, d.dot(d))
+    let (u, v, w) = if P::Scalar::FIXED_POINT {
+        let scale = unit_scale([d1, d2, r]);
+        (d1 * scale, d2 * scale, r * scale)
+    } else {
+        (d1, d2, r)
     };
-    // Each end against the other segment: `(p·d)` of the end less that segment's start.
-    let mut best = at(zero, clamp(f * over_e));
-    for candidate in [
-        at(one, clamp((f + b) * over_e)),
-        at(clamp(-c * over_a), zero),
-        at(clamp((b - c) * over_a), one),
-    ] {
-        if candidate.2 < best.2 {
-            best = candidate;
-        }
-    }
+    let (a, b, e) = (u.dot(u), u.dot(v), v.dot(v));
+    let (c, f) = (u.dot(w), v.dot(w));
+    let over = |x: P::Scalar| if x > zero { one / x } else { zero };
     let denom = a * e - b * b;
-    if denom > zero && e > zero {
-        let s = clamp((b * f - c * e) / denom);
-        let t = clamp((b * s + f) * over_e);
-        let inner = at(s, t);
-        if inner.2 < best.2 {
-            best = inner;
-        }
+    let s = if denom > zero {
+        clamp((b * f - c * e) / denom)
+    } else {
+        zero
+    };
+    let t = (b * s + f) * over(e);
+    let (s, t) = if t < zero {
+        (clamp(-c * over(a)), zero)
+    } else if t > one {
+        (clamp((b - c) * over(a)), one)
+    } else {
+        (s, t)
+    };
+    let d = p0 + d1 * s - (q0 + d2 * t);
+    (s, t, d.dot(d))
+}
+
+/// The power of two, up to 2¹², that brings the largest coordinate of `vectors` to at least
+/// a half (1 when it is there already).
+fn unit_scale<P: Point>(vectors: [P; 3]) -> P::Scalar {
+    let largest = vectors.iter().fold(P::Scalar::ZERO, |m, v| {
+        (0..P::DIM).fold(m, |m, d| m.max(v.coord(d).abs()))
+    });
+    let (mut m, mut scale) = (largest, P::Scalar::ONE);
+    let (half, most) = (P::Scalar::ratio(1, 2), P::Scalar::from_i16(4096));
+    while m < half && scale < most {
+        (m, scale) = (m + m, scale + scale);
     }
-    best
+    scale
 }
 
 #[cfg(all(test, dunas_floats))]
@@ -439,6 +449,80 @@ mod tests {
     use crate::contact::memory::{PairMemory, Recall};
     use crate::curves::power::tests::uniform;
     use crate::curves::smooth::{Smoothed, Smoothing};
+
+    /// The least distance of two segments in `f64`: each end against the other segment, and
+    /// the lines' nearest points where both lie inside.
+    fn segments_reference(p: (Vec3<f64>, Vec3<f64>), q: (Vec3<f64>, Vec3<f64>)) -> f64 {
+        let onto = |x: Vec3<f64>, (a, b): (Vec3<f64>, Vec3<f64>)| {
+            let d = b - a;
+            let t = if d.dot(d) > 0.0 {
+                ((x - a).dot(d) / d.dot(d)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (x - (a + d * t)).length()
+        };
+        let ends = [onto(p.0, q), onto(p.1, q), onto(q.0, p), onto(q.1, p)];
+        let (u, v, w) = (p.1 - p.0, q.1 - q.0, p.0 - q.0);
+        let (a, b, c, d, e) = (u.dot(u), u.dot(v), v.dot(v), u.dot(w), v.dot(w));
+        let det = a * c - b * b;
+        let inner = (det > 1e-12 * a * c).then(|| ((b * e - c * d) / det, (a * e - b * d) / det));
+        let inside = inner.filter(|&(s, t)| (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
+        let lines = inside.map_or(f64::INFINITY, |(s, t)| {
+            (p.0 + u * s - (q.0 + v * t)).length()
+        });
+        ends.into_iter().fold(lines, f64::min)
+    }
+
+    /// `segments_nearest` finds two segments' least distance: in `f64` within 1e-12 of the
+    /// reference on 20 000 random pairs (a tenth parallel, a tenth with a point for a
+    /// segment); in `Q16`, on pairs of segments up to 3.5 cm, 35 cm and 3.5 m long as near
+    /// each other, the points it returns are within 1e-4 m of the least distance.
+    #[test]
+    fn segments_nearest_finds_the_least_distance() {
+        let mut next = uniform(17);
+        let mut point = |scale: f64| Vec3::new(next() * scale, next() * scale, next() * scale);
+        for k in 0..20_000 {
+            let (p0, q0) = (point(1.0), point(1.0));
+            let p1 = if k % 10 == 1 { p0 } else { p0 + point(1.0) };
+            let q1 = if k % 10 == 2 {
+                q0 + (p1 - p0) * 0.7
+            } else {
+                q0 + point(1.0)
+            };
+            let (s, t, squared) = segments_nearest((p0, p1), (q0, q1));
+            let reference = segments_reference((p0, p1), (q0, q1));
+            assert!((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
+            assert!(
+                (squared.sqrt() - reference).abs() <= 1e-12,
+                "{k}: {} {reference}",
+                squared.sqrt()
+            );
+        }
+        use crate::Q16;
+        let q =
+            |p: Vec3<f64>| Vec3::new(Q16::from_f64(p.x), Q16::from_f64(p.y), Q16::from_f64(p.z));
+        let back = |p: Vec3<Q16>| Vec3::new(p.x.to_f64(), p.y.to_f64(), p.z.to_f64());
+        // Segments up to 3.5 cm, 35 cm and 3.5 m long, as near each other.
+        for size in [0.01, 0.1, 1.0] {
+            let mut worst = 0.0f64;
+            for k in 0..10_000 {
+                let (p0, q0) = (q(point(size / 2.0)), q(point(size / 2.0)));
+                let p1 = q(back(p0) + point(size));
+                let q1 = if k % 10 == 2 {
+                    q(back(q0) + (back(p1) - back(p0)) * 0.7)
+                } else {
+                    q(back(q0) + point(size))
+                };
+                let (s, t, _) = segments_nearest((p0, p1), (q0, q1));
+                let (s, t) = (s.to_f64(), t.to_f64());
+                let (p, r) = ((back(p0), back(p1)), (back(q0), back(q1)));
+                let found = (p.0 + (p.1 - p.0) * s - (r.0 + (r.1 - r.0) * t)).length();
+                worst = worst.max(found - segments_reference(p, r));
+            }
+            assert!(worst <= 1e-4, "{size}: {worst}");
+        }
+    }
 
     /// The least distance of spans `a` and `b` of `curve` on a 401 × 401 grid of parameters.
     fn dense(curve: &Smoothed<Vec3<f64>, 8>, (a, b): (usize, usize)) -> f64 {

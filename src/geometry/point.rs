@@ -36,6 +36,19 @@ pub trait Point:
     /// Euclidean length, overflow-free inside the format's range (see [`Scalar::norm`]).
     fn length(self) -> Self::Scalar;
 
+    /// Whether [`length`](Self::length) is below `limit`, without a root (see
+    /// [`Scalar::norm_below`]).
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// let d = Vec2::new(3.0f32, 4.0);
+    /// assert!(!d.shorter_than(5.0) && d.shorter_than(5.001));
+    /// ```
+    #[inline]
+    fn shorter_than(self, limit: Self::Scalar) -> bool {
+        self.length() < limit
+    }
+
     /// [`length`](Self::length) and its inverse (0 for a zero vector), for a length and a
     /// direction at once: see [`Scalar::norm_and_inverse`] (in `Q16`, no division).
     #[inline]
@@ -314,6 +327,10 @@ macro_rules! impl_ops {
             #[inline]
             fn length(self) -> S {
                 S::norm(&[$(self.$f),+])
+            }
+            #[inline]
+            fn shorter_than(self, limit: S) -> bool {
+                S::norm_below(&[$(self.$f),+], limit)
             }
             #[inline]
             fn length_and_inverse(self) -> (S, S) {

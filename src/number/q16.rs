@@ -322,6 +322,11 @@ impl Scalar for Q16 {
     }
 
     #[inline]
+    fn norm_below(xs: &[Self], limit: Self) -> bool {
+        limit > Q16::ZERO && squared_bits(xs) < square(limit.to_bits().unsigned_abs())
+    }
+
+    #[inline]
     fn norm_and_inverse(xs: &[Self]) -> (Self, Self) {
         let (root, inverse) = root_and_inverse(squared_bits(xs));
         (
@@ -424,6 +429,40 @@ mod tests {
         let n = Q16::norm(&[q(16383.0), q(16383.0), q(16383.0)]);
         assert!((n.to_f64() - 16383.0 * 3f64.sqrt()).abs() < 2e-5);
         assert_eq!(Q16::norm(&[Q16::MIN, Q16::MIN]), Q16::MAX);
+    }
+
+    /// `norm_below` answers exactly: against the sum of squares of the coordinates' bits in
+    /// `f64` (exact below 2²⁶ bits a coordinate), and as `norm`'s root does.
+    #[test]
+    fn norm_below_is_exact() {
+        let mut seed = 0x2545_f491_u32;
+        let mut next = |bits: u32| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            Q16::from_bits((seed >> (32 - bits)) as i32 - (1 << (bits - 1)))
+        };
+        let (mut below, mut above) = (0, 0);
+        for round in 0..20_000 {
+            let bits = if round % 2 == 0 { 12 } else { 24 };
+            let xs = [next(bits), next(bits), next(bits)];
+            let limit = Q16::norm(&xs[..2]) + Q16::from_bits(next(4).to_bits());
+            let exact = xs[..2]
+                .iter()
+                .map(|x| f64::from(x.to_bits()).powi(2))
+                .sum::<f64>();
+            let answer = Q16::norm_below(&xs[..2], limit);
+            assert_eq!(
+                answer,
+                limit > Q16::ZERO && exact < f64::from(limit.to_bits()).powi(2)
+            );
+            assert_eq!(answer, Q16::norm(&xs[..2]) < limit, "{xs:?} {limit:?}");
+            (below, above) = if answer {
+                (below + 1, above)
+            } else {
+                (below, above + 1)
+            };
+            assert!(!Q16::norm_below(&xs, Q16::ZERO));
+        }
+        assert!(below > 1000 && above > 1000, "{below} {above}");
     }
 
     #[test]

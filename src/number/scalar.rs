@@ -114,6 +114,12 @@ pub trait Scalar:
     /// not overflow for coordinates inside the format's range (`Q16` uses a 64-bit
     /// accumulator, so vectors longer than 181 are fine).
     fn norm(xs: &[Self]) -> Self;
+    /// Whether [`norm`](Self::norm)`(xs)` is below `limit`, without its root: floats
+    /// compare the sum of squares with `limit²` (to rounding), `Q16` its exact 64-bit sum.
+    #[inline]
+    fn norm_below(xs: &[Self], limit: Self) -> bool {
+        Self::norm(xs) < limit
+    }
     /// [`norm`](Self::norm) and its inverse (0 for a zero norm), for a length and a
     /// direction at once. Floats: a division, exact to its rounding. `Q16`: the norm as
     /// exact as [`norm`](Self::norm)'s, the inverse from the root's own reciprocal estimate,
@@ -206,6 +212,14 @@ macro_rules! impl_float {
                 a * 0.5 + b * 0.5
             }
             #[inline]
+            fn norm_below(xs: &[Self], limit: Self) -> bool {
+                let mut s = 0.0;
+                for &x in xs {
+                    s += x * x;
+                }
+                limit > 0.0 && s < limit * limit
+            }
+            #[inline]
             fn norm(xs: &[Self]) -> Self {
                 // Coordinates are bounded by SAFE_RANGE, whose square fits the format.
                 let mut s = 0.0;
@@ -296,6 +310,26 @@ mod approx_f32 {
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
+
+    /// The floats' `norm_below` answers as the root would, but at the rounding of a limit
+    /// within a few ulps of the norm: 3-4-5 triangles exactly, and random vectors in `f64`.
+    #[test]
+    fn norm_below_answers_as_the_root() {
+        assert!(!f32::norm_below(&[3.0, 4.0], 5.0) && f32::norm_below(&[3.0, 4.0], 5.0001));
+        assert!(!f64::norm_below(&[0.0, 0.0], 0.0) && !f64::norm_below(&[1.0], -2.0));
+        let mut x = 0.5f64;
+        for _ in 0..10_000 {
+            let mut next = || {
+                x = (x * 3.9 * (1.0 - x)).clamp(1e-9, 1.0 - 1e-9);
+                (x - 0.5) * 200.0
+            };
+            let (xs, limit) = ([next(), next(), next()], next().abs());
+            let norm = f64::norm(&xs);
+            if (norm - limit).abs() > 1e-12 * limit {
+                assert_eq!(f64::norm_below(&xs, limit), norm < limit, "{xs:?} {limit}");
+            }
+        }
+    }
 
     /// The floats' bit tests of `flush_tiny` and `within` answer as the float comparisons
     /// do, for every pair of edge values: signed zeros, subnormals, infinities, NaN, and
