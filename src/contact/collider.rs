@@ -610,6 +610,20 @@ fn polygon_distance<P: Point>(corners: &[P], normals: &[P], p: P) -> (P::Scalar,
     nearest
 }
 
+/// What Coulomb friction takes from a sliding velocity `slide`: all of it while its speed is
+/// within `stick`, else `kinetic` of it along it (a root only then).
+pub(super) fn coulomb<P: Point>(slide: P, (stick, kinetic): (P::Scalar, P::Scalar)) -> P {
+    if slide.shorter_than(stick) {
+        return slide;
+    }
+    let speed = slide.length();
+    if speed <= stick {
+        slide
+    } else {
+        slide * (kinetic / speed)
+    }
+}
+
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;

@@ -2,6 +2,7 @@
 //! ([`Contacts::with_self_contact`]).
 
 use super::Contacts;
+use super::collider::coulomb;
 use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
 use super::memory::{PairMemory, Recall};
 use super::span_pairs::{Near, Samples, segments_nearest};
@@ -349,13 +350,7 @@ fn parting<P: Point>(
         return (dx, P::default());
     }
     let push = -vn;
-    let slide = relative - normal * vn;
-    let speed = slide.length();
-    let brake = if speed <= friction * push {
-        slide
-    } else {
-        slide * (friction * push / speed)
-    };
+    let brake = coulomb(relative - normal * vn, (friction * push, friction * push));
     (dx - brake * h, normal * push - brake)
 }
 

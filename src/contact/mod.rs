@@ -87,7 +87,7 @@ use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
 use crate::physics::system::StepInfo;
 use crate::{Aabb, Error, Point, Scalar};
-use collider::Collider;
+use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
 use drawn::{SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
 pub(crate) use memory::PairMemory;
@@ -777,14 +777,8 @@ impl<'a, P: Point> Contacts<'a, P> {
         let (mut dv, mut moved) = (P::default(), P::default());
         if vn < zero {
             let push = -vn * (P::Scalar::ONE + collider.restitution());
-            let slide = relative - n * vn;
-            let speed = slide.length();
             let (stick, kinetic) = collider.friction();
-            let brake = if speed <= stick * push {
-                slide
-            } else {
-                slide * (kinetic * push / speed)
-            };
+            let brake = coulomb(relative - n * vn, (stick * push, kinetic * push));
             (dx, dv) = (dx - brake * h, n * push - brake);
         }
         if body_inv_mass > zero {
