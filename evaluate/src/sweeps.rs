@@ -7,7 +7,7 @@ use dunas::contact::{Contacts, Touch};
 use dunas::integrator::{AnyIntegrator, DirectChain, DirectSprings, ImplicitEuler, Xpbd};
 use dunas::prelude::*;
 
-use crate::contacts::floor_rope;
+use crate::contacts::{floor_rope, spiral_rope};
 use crate::report::{Run, Series, chart, csv, fastest_and_median_ns};
 
 /// Every integrator, at its defaults, named as in the tables.
@@ -137,6 +137,33 @@ fn pile(method: AnyIntegrator) -> (f64, f64) {
     (touching[0] / bare[0], touching[1] / bare[1])
 }
 
+/// A rope at rest on `floor` (a 3D rope of section (g): lying straight, or still in a
+/// spiral): its frame with the floor's drawn Catmull-Rom contacts and self-contact against
+/// its bare frame (fastest batches, medians).
+fn still<const N: usize>(
+    rope: &Rope<Vec3<f32>, N, N, AnyIntegrator>,
+    floor: &[Collider<Vec3<f32>>],
+    reps: usize,
+) -> (f64, f64) {
+    let contacts = Contacts::new(floor, 0.005, Touch::Drawn(Smoothing::CatmullRom))
+        .and_then(|c| c.with_self_contact(0.3))
+        .expect("contacts");
+    let time = |touching: bool| {
+        fastest_and_median_ns(reps, 10, || {
+            let mut r = rope.clone();
+            let _ = if touching {
+                r.step_touching(1.0 / 60.0, (), &contacts)
+            } else {
+                r.step(1.0 / 60.0)
+            }
+            .expect("a step");
+            std::hint::black_box(&r);
+        })
+    };
+    let (bare, touching) = (time(false), time(true));
+    (touching.0 / bare.0, touching.1 / bare.1)
+}
+
 /// One length of the sweep: 4 near pegs on an `N`-particle rope, at the particles and on
 /// the drawn B-spline.
 fn length_row<const N: usize>(method: AnyIntegrator, reps: usize) -> [(f64, f64); 2] {
@@ -237,20 +264,34 @@ pub fn run(run: &mut Run) {
         by_length.push(Series::line(*name, points));
     }
     let mut piles = String::from(
-        "| integrator | falling into the pile (× bare frame) | settled in it |\n|---|---|---|\n",
+        "| integrator | lying straight (× bare frame) | still in a spiral (24 particles) | \
+         falling into the pile | settled in it |\n|---|---|---|---|---|\n",
     );
+    let straight = (Vec3::new(0.0, 0.005, 0.0), Vec3::new(3.0, 0.005, 0.0));
     for (name, method) in methods {
+        let (rope, floor) = floor_rope(*method, straight, 0.0, 120);
+        let lying = still(&rope, &floor, reps);
+        let (rope, floor) = spiral_rope(*method);
+        let spiral = still(&rope, &floor, reps);
         let (falling, settled) = pile(*method);
-        piles.push_str(&format!("| {name} | {falling:.0} | {settled:.0} |\n"));
-        for (state, r) in [("pile, falling", falling), ("pile, settled", settled)] {
+        piles.push_str(&format!(
+            "| {name} | {:.1} ({:.1}) | {:.1} ({:.1}) | {falling:.0} | {settled:.0} |\n",
+            lying.0, lying.1, spiral.0, spiral.1
+        ));
+        for (state, particles, r) in [
+            ("lying straight", "16", lying),
+            ("spiral, still", "24", spiral),
+            ("pile, falling", "16", (falling, falling)),
+            ("pile, settled", "16", (settled, settled)),
+        ] {
             rows.push(vec![
                 (*name).into(),
                 "drawn Catmull-Rom, self-contact".into(),
-                "16".into(),
+                particles.into(),
                 "1".into(),
                 state.into(),
-                format!("{r:.4}"),
-                format!("{r:.4}"),
+                format!("{:.4}", r.0),
+                format!("{:.4}", r.1),
             ]);
         }
     }
@@ -298,10 +339,13 @@ pub fn run(run: &mut Run) {
              tested). Chart: `contact_costs.svg` (by pegs), `contact_lengths.svg` (by \
              particles); every figure in `contact_costs.csv`.\n\n### By the number of \
              colliders (8 particles)\n\n{table}\n### By the rope's length (4 near pegs)\n\n\
-             {lengths_table}\n### Self-contact in a pile\n\nThe pile of section (g), a \
-             16-particle 3D rope dropped end first onto a floor, with drawn Catmull-Rom \
-             contacts and self-contact: the mean frame against the mean bare frame of the same \
-             states, over its first 2 s (falling) and its last 2 s (settled).\n\n{piles}"
+             {lengths_table}\n### Self-contact, at rest and in a pile\n\nThe ropes of \
+             section (g) on a floor, with drawn Catmull-Rom contacts and self-contact: the \
+             16-particle 3D rope lying straight and the 24-particle one still in a flat spiral \
+             (a frame against the bare frame of the same state, fastest batches, medians in \
+             brackets), and the 16-particle one dropped end first into a pile (the mean frame \
+             against the mean bare frame of the same states, over its first 2 s, falling, and \
+             its last 2 s, settled).\n\n{piles}"
         ),
     );
 }
