@@ -526,11 +526,12 @@ fn moving_costs(
     }
 }
 
+/// The spiral's rope: 24 particles in 3D.
+pub type SpiralRope<I> = Rope<Vec3<f32>, 24, 24, I>;
+
 /// A 24-particle 3D rope (4.6 m, 0.9 kg, 1 cm thick) stepped by `method`, laid in a flat
 /// spiral on a floor (its turns 6 cm apart), settled for 2 s with self-contact.
-pub fn spiral_rope<I: Integrator>(
-    method: I,
-) -> (Rope<Vec3<f32>, 24, 24, I>, [Collider<Vec3<f32>>; 1]) {
+pub fn spiral_rope<I: Integrator>(method: I) -> (SpiralRope<I>, [Collider<Vec3<f32>>; 1]) {
     let settings = Settings {
         gravity: Vec3::new(0.0, -9.81, 0.0),
         damping: 0.3,
@@ -554,7 +555,7 @@ pub fn spiral_rope<I: Integrator>(
         .windows(2)
         .map(|w| (w[1] - w[0]).length())
         .sum::<f32>();
-    let mut rope: Rope<Vec3<f32>, 24, 24, I> = Rope::new(
+    let mut rope: SpiralRope<I> = Rope::new(
         Vec3::new(0.0, 0.005, 0.0),
         Vec3::new(length, 0.005, 0.0),
         0.9,
