@@ -67,12 +67,23 @@ fn settled<const N: usize>(
 ) -> (Rope<Vec2<f32>, N>, f64) {
     let rope: Rope<Vec2<f32>, N> = draped_rope(colliders, touch, SETTLE_FRAMES);
     let contacts = Contacts::new(colliders, 0.0, touch).expect("valid contacts");
-    let ns = median_ns(reps, 20, || {
-        let mut r = rope.clone();
-        let _ = r.step_touching(1.0 / 60.0, (), &contacts).expect("a step");
-        std::hint::black_box(&r);
-    });
+    let ns = median_ns(reps, 20, || frame_of(&rope, Some(&contacts)));
     (rope, ns)
+}
+
+/// One 60 Hz frame of a copy of `rope`: with `contacts`, or bare.
+pub fn frame_of<P: dunas::Point, const N: usize, const CAP: usize, I: Integrator>(
+    rope: &Rope<P, N, CAP, I>,
+    contacts: Option<&Contacts<'_, P>>,
+) {
+    let mut r = rope.clone();
+    let dt = <P::Scalar as dunas::Scalar>::ratio(1, 60);
+    let _ = match contacts {
+        Some(c) => r.step_touching(dt, (), c),
+        None => r.step(dt),
+    }
+    .expect("a step");
+    std::hint::black_box(&r);
 }
 
 pub fn run(run: &mut Run) {
@@ -597,18 +608,8 @@ fn far_collider_cost(reps: usize) -> (f64, (u16, u16)) {
             .substeps,
         rope.clone().step(1.0 / 60.0).expect("a step").substeps,
     );
-    let time = |touching: bool| {
-        median_ns(reps, 50, || {
-            let mut r = rope.clone();
-            let _ = if touching {
-                r.step_touching(1.0 / 60.0, (), &contacts)
-            } else {
-                r.step(1.0 / 60.0)
-            }
-            .expect("a step");
-            std::hint::black_box(&r);
-        })
-    };
+    let time =
+        |touching: bool| median_ns(reps, 50, || frame_of(&rope, touching.then_some(&contacts)));
     // Interleaved rounds, the least of each: the difference is small beside the noise.
     let (mut bare, mut with) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..5 {

@@ -7,7 +7,7 @@ use dunas::contact::{Contacts, Touch};
 use dunas::integrator::{AnyIntegrator, DirectChain, DirectSprings, ImplicitEuler, Xpbd};
 use dunas::prelude::*;
 
-use crate::contacts::{floor_rope, spiral_rope};
+use crate::contacts::{floor_rope, frame_of, spiral_rope};
 use crate::report::{Run, Series, chart, csv, fastest_and_median_ns};
 
 /// Every integrator, at its defaults, named as in the tables.
@@ -93,16 +93,18 @@ fn frame_ratio<const N: usize>(
             .step_touching(1.0 / 60.0, (), &contacts)
             .expect("a step");
     }
-    let bare = fastest_and_median_ns(reps, 10, || {
-        let mut r = rope.clone();
-        let _ = r.step(1.0 / 60.0).expect("a step");
-        std::hint::black_box(&r);
-    });
-    let touching = fastest_and_median_ns(reps, 10, || {
-        let mut r = rope.clone();
-        let _ = r.step_touching(1.0 / 60.0, (), &contacts).expect("a step");
-        std::hint::black_box(&r);
-    });
+    over_bare(&rope, &contacts, reps)
+}
+
+/// `rope`'s frame with `contacts` against its bare frame: in the fastest batches, and the
+/// medians.
+fn over_bare<P: dunas::Point, const N: usize>(
+    rope: &Rope<P, N, N, AnyIntegrator>,
+    contacts: &Contacts<'_, P>,
+    reps: usize,
+) -> (f64, f64) {
+    let time = |with| fastest_and_median_ns(reps, 10, || frame_of(rope, with));
+    let (bare, touching) = (time(None), time(Some(contacts)));
     (touching.0 / bare.0, touching.1 / bare.1)
 }
 
@@ -148,20 +150,7 @@ fn still<const N: usize>(
     let contacts = Contacts::new(floor, 0.005, Touch::Drawn(Smoothing::CatmullRom))
         .and_then(|c| c.with_self_contact(0.3))
         .expect("contacts");
-    let time = |touching: bool| {
-        fastest_and_median_ns(reps, 10, || {
-            let mut r = rope.clone();
-            let _ = if touching {
-                r.step_touching(1.0 / 60.0, (), &contacts)
-            } else {
-                r.step(1.0 / 60.0)
-            }
-            .expect("a step");
-            std::hint::black_box(&r);
-        })
-    };
-    let (bare, touching) = (time(false), time(true));
-    (touching.0 / bare.0, touching.1 / bare.1)
+    over_bare(rope, &contacts, reps)
 }
 
 /// One length of the sweep: 4 near pegs on an `N`-particle rope, at the particles and on
