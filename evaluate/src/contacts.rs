@@ -216,9 +216,9 @@ pub fn run(run: &mut Run) {
             far_added * 100.0
         ),
         far_added <= 0.05 && far_substeps == bare_substeps,
-        "before it knows that nothing is in reach, the frame takes the rope's box, its top \
-         speed and each collider's swept box: a fixed cost that an 8-particle rope's short \
-         step shows",
+        "before it knows that nothing is in reach, the frame takes a pass over the particles \
+         (their box and top speed, a root) and a box test of each collider's path: a fixed \
+         cost that an 8-particle rope's short step shows",
     );
     run.target(
         "curve contacts catch pegs down to 0.1× the particle spacing",

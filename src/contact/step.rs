@@ -2,6 +2,7 @@
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
 use super::{Contacts, Touch};
+use crate::curves::smooth::Smoothing;
 use crate::error::check_non_negative;
 use crate::physics::force::ForceField;
 use crate::physics::integrator::{Integrator, State};
@@ -53,13 +54,19 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         })
     }
 
-    /// A box that holds what `touch` tests: the particles' box, grown for a drawn curve or
-    /// surface by the largest coordinate step between particles next in memory (a spline
-    /// bulges past its particles by a fraction of its spacing along each axis). No root.
-    fn drawn_bounds(&self, touch: Touch) -> Aabb<P> {
+    /// A box that holds what `touch` tests, from the particles' box `b`, which holds their polyline
+    /// and their Bézier and B-spline curves and surfaces (each inside its control points'
+    /// convex hull), grown for a Catmull-Rom or natural spline by the largest coordinate step
+    /// between particles next in memory (such a spline bulges past its particles by a
+    /// fraction of its spacing along each axis). No root.
+    fn drawn_bounds(&self, touch: Touch, b: Aabb<P>) -> Aabb<P> {
         let x = self.positions();
-        let b = Aabb::from_points(x).unwrap_or(Aabb::point(P::default()));
-        if touch == Touch::Particles {
+        use Smoothing::{CatmullRom, NaturalSpline};
+        let bulging = matches!(
+            touch,
+            Touch::Drawn(CatmullRom | NaturalSpline) | Touch::DrawnLoop(CatmullRom | NaturalSpline)
+        );
+        if !bulging {
             return b;
         }
         let step = x.windows(2).fold(P::Scalar::ZERO, |most, w| {
@@ -70,9 +77,75 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         b.grown(step)
     }
 
+    /// What `contacts` ask of this frame's step (`surface`: the drawn points are a
+    /// surface's), its pushes cleared: sleep on, step with no contacts, or step with them
+    /// at the substeps they ask for. Costs a pass over the particles (their box and top
+    /// speed) and, per collider, a box test of its path ([`can_touch`](Contacts::can_touch)).
+    #[inline]
+    pub(crate) fn reach<F: ForceField<P>>(
+        &self,
+        dt: P::Scalar,
+        forces: &F,
+        contacts: &Contacts<'_, P>,
+        surface: bool,
+    ) -> Reach<P::Scalar> {
+        contacts.clear_pushes();
+        let (particles, top_speed) = self.bounds_and_top_speed(dt);
+        let bounds = self.drawn_bounds(contacts.touch(), particles);
+        let near = match self.sleep() {
+            Some(_) => contacts.still_key(bounds, dt),
+            None => None,
+        };
+        let (speed, object) = ((top_speed, surface), (bounds, dt));
+        if self.sleeps_under(forces, near) {
+            Reach::Asleep
+        } else if contacts.can_touch(speed, object) {
+            Reach::Within(contacts.rate(speed, object), near)
+        } else {
+            Reach::Apart(near)
+        }
+    }
+
+    /// The step of a frame that `reach` found asleep or with nothing within reach: a doze,
+    /// or a plain step with no contacts to test and no pushes to report (the contacts of a
+    /// [`Within`](Reach::Within) frame left out).
+    pub(crate) fn step_apart<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        reach: Reach<P::Scalar>,
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        match reach {
+            Reach::Asleep => check_non_negative(dt, "dt").map(|dt| self.doze(dt)),
+            Reach::Apart(near) | Reach::Within(_, near) => {
+                self.step_resolving(dt, forces, (P::Scalar::ZERO, near), |_, _, _| {})
+            }
+        }
+    }
+
+    /// The step of a frame within reach of `contacts` (`rate` substeps a second at least,
+    /// `near` as [`reach`](Self::reach) found them): each substep ends with `resolve` (the
+    /// contacts), reporting impulses when `contacts` asks for them.
+    pub(crate) fn step_within<F: ForceField<P>>(
+        &mut self,
+        dt: P::Scalar,
+        forces: F,
+        contacts: &Contacts<'_, P>,
+        (rate, near): (P::Scalar, Option<u64>),
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+    ) -> Result<StepInfo<P::Scalar>, Error> {
+        let resolve = |state: &mut State<P, Sh>,
+                       w: &Sh::PerParticle<P::Scalar>,
+                       times: (P::Scalar, P::Scalar)| {
+            contacts.advance_bodies(times.0);
+            resolve(state, w, times)
+        };
+        contacts.finish_report(self.step_resolving(dt, forces, (rate, near), resolve))
+    }
+
     /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the
     /// substeps the contacts ask for (`surface`: the drawn points are a surface's), reporting
-    /// impulses when `contacts` asks for them.
+    /// impulses when `contacts` asks for them; a plain step when nothing is within reach.
     pub(crate) fn step_contacts<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
@@ -81,34 +154,23 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         surface: bool,
         resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        contacts.clear_pushes();
-        let bounds = self.drawn_bounds(contacts.touch());
-        let near = match self.sleep() {
-            Some(_) => contacts.still_key(bounds, dt),
-            None => None,
-        };
-        // Asleep with nothing near moved: it stays so, with no contacts to test.
-        if self.sleeps_under(&forces, near) {
-            return check_non_negative(dt, "dt").map(|dt| self.doze(dt));
+        match self.reach(dt, &forces, contacts, surface) {
+            Reach::Within(rate, near) => {
+                self.step_within(dt, forces, contacts, (rate, near), resolve)
+            }
+            apart => self.step_apart(dt, forces, apart),
         }
-        let (speed, object) = ((self.top_speed(dt), surface), (bounds, dt));
-        // Nothing within reach this frame: a plain step, with no contacts to test.
-        if !contacts.can_touch(speed, object) {
-            return contacts.finish_report(self.step_resolving(
-                dt,
-                forces,
-                (P::Scalar::ZERO, near),
-                |_, _, _| {},
-            ));
-        }
-        let floor = contacts.rate(speed, object);
-        let mut resolve = resolve;
-        let resolve = |state: &mut State<P, Sh>,
-                       w: &Sh::PerParticle<P::Scalar>,
-                       times: (P::Scalar, P::Scalar)| {
-            contacts.advance_bodies(times.0);
-            resolve(state, w, times)
-        };
-        contacts.finish_report(self.step_resolving(dt, forces, (floor, near), resolve))
     }
+}
+
+/// What a frame's contacts ask of its step ([`MassSpring::reach`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Reach<S> {
+    /// Asleep, with nothing near that moved: it stays so.
+    Asleep,
+    /// Nothing within reach: a plain step (the key of what is near, for sleep).
+    Apart(Option<u64>),
+    /// Something within reach: contacts after every substep, at least this many substeps a
+    /// second (the key of what is near, for sleep).
+    Within(S, Option<u64>),
 }

@@ -3,7 +3,7 @@
 use crate::error::{invalid, out_of_range};
 use core::ops::{Deref, DerefMut};
 
-use crate::contact::{Contacts, PairMemory, Touch};
+use crate::contact::{Contacts, PairMemory, Reach, Touch};
 use crate::curves::smooth::{self, Smoothing};
 use crate::error::{check_points, check_positive};
 use crate::geometry::catenary::Catenary;
@@ -245,20 +245,23 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        let springs = self.system.topology();
-        let whole = !springs.any_broken();
-        // Joined along the chain unless something broke; the closing spring looked up only
-        // for a loop (an open curve never reads it).
-        let closing = matches!(contacts.touch(), Touch::DrawnLoop(_)) && springs.joins(N - 1, 0);
-        let joined: [bool; N] = core::array::from_fn(|i| match i + 1 < N {
-            true => whole || springs.joins(i, i + 1),
-            false => closing,
-        });
-        if contacts.remembers() {
-            self.step_remembering(dt, forces, contacts, &joined)
-        } else {
-            self.step_curve(dt, forces, contacts, &joined, None)
+        match self.system.reach(dt, &forces, contacts, false) {
+            Reach::Within(rate, near) if contacts.remembers() => {
+                self.step_remembering(dt, forces, contacts, (rate, near))
+            }
+            Reach::Within(rate, near) => self.step_curve(dt, forces, contacts, (rate, near), None),
+            apart => self.system.step_apart(dt, forces, apart),
         }
+    }
+
+    /// Which particles a live spring joins to the next along the chain (the last to the
+    /// first only for a `closed` curve, which alone reads it).
+    fn joined(springs: &Springs<P::Scalar, CAP>, closed: bool) -> [bool; N] {
+        let whole = !springs.any_broken();
+        core::array::from_fn(|i| match i + 1 < N {
+            true => whole || springs.joins(i, i + 1),
+            false => closed && springs.joins(N - 1, 0),
+        })
     }
 
     /// [`step_touching`](Self::step_touching) with self-contact on the drawn curve: what it
@@ -270,27 +273,30 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
-        joined: &[bool; N],
+        reach: (P::Scalar, Option<u64>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let mut memory = PairMemory::new();
-        self.step_curve(dt, forces, contacts, joined, Some(&mut memory))
+        self.step_curve(dt, forces, contacts, reach, Some(&mut memory))
     }
 
-    /// A step with the contacts of the drawn curve (`joined`: which particles are joined to
-    /// the next), self-contact remembering in `memory`: one copy for both callers.
+    /// A step with the contacts of the drawn curve (within `reach`: the rate and key of
+    /// [`MassSpring::reach`]), self-contact remembering in `memory`: one copy for both
+    /// callers.
     #[inline(never)]
     fn step_curve<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
-        joined: &[bool; N],
+        reach: (P::Scalar, Option<u64>),
         mut memory: Option<&mut PairMemory<P, N>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
+        let closed = matches!(contacts.touch(), Touch::DrawnLoop(_));
+        let joined = Self::joined(self.system.topology(), closed);
         self.system
-            .step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
+            .step_within(dt, forces, contacts, reach, |state, inv_mass, times| {
                 let parts = (&mut state.pos, &mut state.vel, inv_mass);
-                contacts.resolve_curve(parts, times, joined, memory.as_deref_mut())
+                contacts.resolve_curve(parts, times, &joined, memory.as_deref_mut())
             })
     }
 

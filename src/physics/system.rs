@@ -12,7 +12,7 @@ use crate::physics::shape::Shape;
 use crate::physics::sleep::Rest;
 use crate::physics::spring::{Spread, Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
-use crate::{Error, Point, Scalar, Settings};
+use crate::{Aabb, Error, Point, Scalar, Settings};
 
 pub use crate::physics::substeps::MAX_SUBSTEPS;
 
@@ -597,23 +597,29 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         self.step_resolving(dt, forces, (P::Scalar::ZERO, Some(0)), |_, _, _| {})
     }
 
-    /// The fastest a free particle can go this frame: its speed now plus what gravity adds
-    /// over `dt`.
-    pub(crate) fn top_speed(&self, dt: P::Scalar) -> P::Scalar {
-        let velocities = self.velocities().iter();
+    /// The particles' box, and the fastest a free particle can go this frame: its speed now
+    /// plus what gravity adds over `dt`. One pass over the particles and two roots.
+    pub(crate) fn bounds_and_top_speed(&self, dt: P::Scalar) -> (Aabb<P>, P::Scalar) {
+        let (x, v) = (self.positions(), self.velocities());
+        let first = Aabb::point(x.first().copied().unwrap_or_default());
         // Lengths in `Q16`, whose square saturates past 181 units a second; in floats the
         // root of the largest square, the same number for one root instead of one a particle.
-        let fastest = if P::Scalar::FIXED_POINT {
-            velocities
-                .map(|v| v.length())
-                .fold(P::Scalar::ZERO, P::Scalar::max)
-        } else {
-            velocities
-                .map(|v| v.dot(*v))
-                .fold(P::Scalar::ZERO, P::Scalar::max)
-                .sqrt()
+        let size = |v: &P| match P::Scalar::FIXED_POINT {
+            true => v.length(),
+            false => v.dot(*v),
         };
-        fastest + self.settings.gravity.length() * dt
+        let (bounds, most) = x
+            .iter()
+            .zip(v)
+            .fold((first, P::Scalar::ZERO), |(b, most), (x, v)| {
+                (b.including(*x), most.max(size(v)))
+            });
+        let fastest = if P::Scalar::FIXED_POINT {
+            most
+        } else {
+            most.sqrt()
+        };
+        (bounds, fastest + self.settings.gravity.length() * dt)
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,

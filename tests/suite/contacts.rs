@@ -367,6 +367,43 @@ fn a_collider_out_of_reach_asks_for_no_substeps() {
     }
 }
 
+/// A drawn Bézier, B-spline or polyline lies inside its particles' box (each inside its
+/// control points' convex hull), so a ball that passes beside a straight rope, further than
+/// the thickness from that box, asks for no substeps; a Catmull-Rom curve, which bulges past
+/// its particles by up to a sixth of their spacing, has its box grown by a spacing and takes
+/// the substeps the fast ball asks for.
+#[test]
+fn a_ball_beside_a_curve_inside_its_particles_asks_for_no_substeps() {
+    let material = Material {
+        stiffness: 400.0,
+        damping: 0.5,
+    };
+    let rope = || -> Rope<Vec2<f64>, 8> {
+        let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0));
+        Rope::new(a, b, 1.0, material, Settings::default()).unwrap()
+    };
+    let alone = rope().step(1.0 / 60.0).unwrap().substeps;
+    // 20 cm below the rope (10 cm radius), flying along it at 30 m/s: within a spacing, and
+    // fast enough to ask for substeps wherever it can be reached.
+    let beside = [Collider::ball(Vec2::new(3.5, -0.3), 0.1)
+        .unwrap()
+        .moving(Vec2::new(30.0, 0.0))
+        .unwrap()];
+    let inside = [Smoothing::Bezier, Smoothing::BSpline, Smoothing::Polyline];
+    for smoothing in inside.into_iter().chain([Smoothing::CatmullRom]) {
+        let contacts = Contacts::new(&beside, 0.02, Touch::Drawn(smoothing)).unwrap();
+        let (mut near, mut bare) = (rope(), rope());
+        let info = near.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+        let _ = bare.step(1.0 / 60.0).unwrap();
+        if smoothing == Smoothing::CatmullRom {
+            assert!(info.substeps > alone, "{smoothing:?}: {}", info.substeps);
+        } else {
+            assert_eq!(info.substeps, alone, "{smoothing:?}");
+            assert_eq!(near.positions(), bare.positions(), "{smoothing:?}");
+        }
+    }
+}
+
 /// Two-way coupling conserves momentum: with nothing pinned and no gravity, the ball and
 /// the rope it strikes keep their total momentum (springs are internal forces, and the ball
 /// takes back exactly what the contacts give the rope).
