@@ -426,14 +426,14 @@ impl<'a, P: Point> Contacts<'a, P> {
                 if reach.is_some_and(|r| !r.contains(*x + offset)) {
                     continue;
                 }
+                let Some(touch) = self.touching(collider, *x + offset) else {
+                    continue;
+                };
                 let body = self.body(k, collider);
-                if let Some((dx, dv, moved)) =
-                    self.response(collider, body, (*x, *v, w), (h, offset))
-                {
-                    *x += dx;
-                    *v += dv;
-                    self.report(k, dv * (P::Scalar::ONE / w), moved);
-                }
+                let (dx, dv, moved) = self.response(collider, body, (touch, *v, w), h);
+                *x += dx;
+                *v += dv;
+                self.report(k, dv * (P::Scalar::ONE / w), moved);
             }
         }
     }
@@ -607,17 +607,17 @@ impl<'a, P: Point> Contacts<'a, P> {
                     (None, Some(c)) if !P::Scalar::FIXED_POINT => curve.nearest(span, c - shift),
                     _ => curve.deepest(span, |x| collider.search_key(x + shift, scale)),
                 };
-                let x = curve.point(span, t);
+                // A point clear of the collider takes no push: no weights to take.
+                let Some(touch) = self.touching(collider, curve.point(span, t) + shift) else {
+                    continue;
+                };
                 let weights = Weights::of(&*curve, span, t);
                 let v = point_of(vel, weights.entries());
                 let Some(w) = point_inv_mass(inv_mass, weights.entries()) else {
                     continue;
                 };
                 let body = self.body(k, collider);
-                let Some((dx, dv, shifted)) = self.response(collider, body, (x, v, w), (h, shift))
-                else {
-                    continue;
-                };
+                let (dx, dv, shifted) = self.response(collider, body, (touch, v, w), h);
                 if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
                     self.report(k, given, shifted);
                     if curve.rebuild(pos, weights.ends()).is_none() {
@@ -723,17 +723,16 @@ impl<'a, P: Point> Contacts<'a, P> {
                     continue;
                 };
                 surface.at((cu, cv), (u, v));
-                let (x, v) = (surface.point(pos), surface.point(vel));
+                let Some(touch) = self.touching(collider, surface.point(pos) + shift) else {
+                    continue;
+                };
                 let w = (0..U * V).map(|i| (i, surface.wu[i % U] * surface.wv[i / U]));
                 let Some(mobility) = point_inv_mass(inv_mass, w.clone()) else {
                     continue;
                 };
                 let body = self.body(k, collider);
-                let Some((dx, dv, moved)) =
-                    self.response(collider, body, (x, v, mobility), (h, shift))
-                else {
-                    continue;
-                };
+                let v = surface.point(vel);
+                let (dx, dv, moved) = self.response(collider, body, (touch, v, mobility), h);
                 if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
                     self.report(k, given, moved);
                     if let Some(net) = controls {
@@ -757,27 +756,29 @@ impl<'a, P: Point> Contacts<'a, P> {
         (gap - half_diagonal < self.thickness).then(|| collider.key_scale(gap + half_diagonal))
     }
 
-    /// The position and velocity change for a point at `x` moving at `v`, with inverse mass
-    /// `w` (a drawn point's: `Σ w_i² / m_i`), at the end of a substep of `h`, and how far the
-    /// collider's body moves; `None` when the point is clear of `collider`. `offset` carries
-    /// the point into the collider's frame at its end pose ([`offset`](Self::offset));
-    /// `(body_velocity, body_inv_mass)` is the collider now ([`body`](Self::body)). Against
-    /// a body of finite mass the point takes its share `w / (w + 1/M)` of the push out and of
-    /// the velocity change, the body the rest: an inelastic two-body contact. Friction also
-    /// takes back the sliding it stops from this substep's move (`brake · h`), so a sticking
-    /// contact does not creep.
+    /// The distance and outward normal of `collider` at `p` (a point plus its
+    /// [`offset`](Self::offset)); `None` when clear by the thickness (or not finite).
+    fn touching(&self, collider: &Collider<P>, p: P) -> Option<(P::Scalar, P)> {
+        let (d, n) = collider.distance(p);
+        (d < self.thickness && d.is_finite()).then_some((d, n))
+    }
+
+    /// The position and velocity change for a point at distance `d` from `collider` along
+    /// its outward normal `n` ([`touching`](Self::touching)), moving at `v`, with inverse
+    /// mass `w` (a drawn point's: `Σ w_i² / m_i`), at the end of a substep of `h`, and how
+    /// far the collider's body moves; `(body_velocity, body_inv_mass)` is the collider now
+    /// ([`body`](Self::body)). Against a body of finite mass the point takes its share
+    /// `w / (w + 1/M)` of the push out and of the velocity change, the body the rest: an
+    /// inelastic two-body contact. Friction also takes back the sliding it stops from this
+    /// substep's move (`brake · h`), so a sticking contact does not creep.
     fn response(
         &self,
         collider: &Collider<P>,
         (body_velocity, body_inv_mass): (P, P::Scalar),
-        (x, v, w): (P, P, P::Scalar),
-        (h, offset): (P::Scalar, P),
-    ) -> Option<(P, P, P)> {
+        ((d, n), v, w): ((P::Scalar, P), P, P::Scalar),
+        h: P::Scalar,
+    ) -> (P, P, P) {
         let zero = P::Scalar::ZERO;
-        let (d, n) = collider.distance(x + offset);
-        if d >= self.thickness || !d.is_finite() {
-            return None;
-        }
         let mut dx = n * (self.thickness - d);
         let relative = v - body_velocity;
         let vn = relative.dot(n);
@@ -793,6 +794,6 @@ impl<'a, P: Point> Contacts<'a, P> {
             moved = dx * (share - P::Scalar::ONE);
             (dx, dv) = (dx * share, dv * share);
         }
-        Some((dx, dv, moved))
+        (dx, dv, moved)
     }
 }
