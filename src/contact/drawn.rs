@@ -1,6 +1,7 @@
 //! What contacts test and move: a drawn curve's spans and a drawn surface's cells, each point
 //! a weighted sum of the particles, and how a correction at a drawn point reaches them.
 
+use super::collider::Collider;
 use crate::curves::curve::clamp_unit;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
@@ -183,6 +184,38 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
             .zip(&self.weight[..self.len])
             .map(|(&i, &x)| (i, x))
     }
+}
+
+/// Whether the cubic span with Bézier control points `b` (in the collider's frame) is
+/// clear of `collider` by the `thickness`, judged without a search: the span lies in its
+/// control points' convex hull, whose every point is within `ρ` of the chord `b[0]`–`b[3]`
+/// (`ρ` the farther of `b[1]` and `b[2]` from it), so a ball that is further than `ρ` and
+/// the thickness from the chord (by a 1/1024 of `ρ` and of the chord's longest coordinate,
+/// for the rounding) is clear of the span. One division and two roots; `false` for every
+/// solid but a ball, and in `Q16` (whose products of a short chord keep few bits, and of a
+/// long one saturate), which then take the search.
+pub(super) fn ball_clears_span<P: Point>(
+    collider: &Collider<P>,
+    b: [P; 4],
+    thickness: P::Scalar,
+) -> bool {
+    let Some(centre) = collider.centre().filter(|_| !P::Scalar::FIXED_POINT) else {
+        return false;
+    };
+    let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
+    let chord = b[3] - b[0];
+    let squared = chord.dot(chord);
+    let inverse = if squared > zero { one / squared } else { zero };
+    // The chord's nearest point to `p`.
+    let nearest = |p: P| b[0] + chord * ((p - b[0]).dot(chord) * inverse).max(zero).min(one);
+    let off = |p: P| {
+        let d = p - nearest(p);
+        d.dot(d)
+    };
+    let bulge = off(b[1]).max(off(b[2])).sqrt();
+    let span = (0..P::DIM).fold(zero, |m, d| m.max(chord.coord(d).abs()));
+    let margin = (bulge + span) * P::Scalar::ratio(1, 1024);
+    collider.gap(nearest(centre)) - bulge >= thickness + margin
 }
 
 /// `Σ w_i · p_i` over `(i, w_i)` in `w`.
@@ -409,7 +442,7 @@ pub(super) fn deepest_in_cell<P: Point>(
 #[cfg(all(test, dunas_floats))]
 mod tests {
     use super::*;
-    use crate::Vec2;
+    use crate::{Bezier, Vec2};
 
     /// A segment's two weights are those a polyline's point has, open and round a loop, at
     /// its ends and between (the particles' order kept).
@@ -430,5 +463,45 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A ball is judged clear of a cubic span only where it is: on 20 000 random spans and
+    /// balls, in `f32`, every span judged clear comes no nearer the ball than its radius
+    /// and the thickness (the span sampled at 4 096 points in `f64`, less the sampling's
+    /// reach); and the test is no idle one: it judges clear more than a quarter of the spans
+    /// that are, and a straight span beside a ball.
+    #[test]
+    fn a_ball_clear_of_a_span_is_clear_of_every_point() {
+        let mut next = crate::curves::power::tests::uniform(29);
+        let (mut judged, mut far) = (0, 0);
+        for _ in 0..20_000 {
+            let b: [Vec2<f32>; 4] =
+                core::array::from_fn(|_| Vec2::new(next() as f32, next() as f32));
+            let centre = Vec2::new(2.0 * next() as f32, 2.0 * next() as f32);
+            let (radius, thickness) = (0.3 * (next() as f32).abs(), 0.05 * (next() as f32).abs());
+            let ball = Collider::ball(centre, radius).unwrap();
+            let wide = Bezier::new(b.map(|p| Vec2::new(f64::from(p.x), f64::from(p.y)))).unwrap();
+            let c = Vec2::new(f64::from(centre.x), f64::from(centre.y));
+            let least = (0..=4096)
+                .map(|k| (wide.eval(k as f64 / 4096.0) - c).length())
+                .fold(f64::INFINITY, f64::min);
+            // Consecutive samples are at most |P'| / 4096 apart, |P'| ≤ 3 · the longest leg.
+            let legs = b.windows(2).map(|w| f64::from((w[1] - w[0]).length()));
+            let reach = 3.0 * legs.fold(0.0, f64::max) / 8192.0;
+            let clearance = f64::from(radius) + f64::from(thickness);
+            if ball_clears_span(&ball, b, thickness) {
+                judged += 1;
+                assert!(
+                    least + reach >= clearance,
+                    "{b:?}, {centre:?}, {radius}: {least}"
+                );
+            }
+            far += usize::from(least >= clearance);
+        }
+        assert!(judged * 4 > far, "{judged} judged clear of {far} clear");
+        let line = [0.0f32, 1.0, 2.0, 3.0].map(|x| Vec2::new(x, 0.0));
+        let ball = Collider::ball(Vec2::new(1.5, -0.3), 0.2).unwrap();
+        assert!(ball_clears_span(&ball, line, 0.05));
+        assert!(!ball_clears_span(&ball, line, 0.15));
     }
 }

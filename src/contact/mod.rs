@@ -91,10 +91,12 @@ mod step;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
 use crate::physics::system::StepInfo;
-use crate::{Aabb, Error, Point, Scalar};
+use crate::{Error, Point, Scalar};
 use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
-use drawn::{SurfacePoint, Weights, deepest_in_cell, point_inv_mass, point_of, spread};
+use drawn::{
+    SurfacePoint, Weights, ball_clears_span, deepest_in_cell, point_inv_mass, point_of, spread,
+};
 pub(crate) use memory::PairMemory;
 pub(crate) use step::Reach;
 
@@ -600,6 +602,11 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let Some(scale) = self.near(collider, hull, shift) else {
                     continue;
                 };
+                let clear =
+                    |b: [P; 4]| ball_clears_span(collider, b.map(|p| p + shift), self.thickness);
+                if curve.cubic(span).is_some_and(clear) {
+                    continue;
+                }
                 // In closed form in a half-space; by Newton steps to a ball's centre in
                 // floats; else by the halving search (shifts and additions in `Q16`).
                 let t = match (collider.outward(), collider.centre()) {
@@ -743,17 +750,6 @@ impl<'a, P: Point> Contacts<'a, P> {
                 }
             }
         }
-    }
-
-    /// The [`search_key`](Collider::search_key) scale for `hull`, or `None` when every point
-    /// of `hull` is at least the thickness from `collider` moved by `shift`: the distance
-    /// changes no faster than the point moves, so every point of the box is at least
-    /// d(centre) - half its diagonal away (and at most d(centre) + half of it).
-    fn near(&self, collider: &Collider<P>, hull: Aabb<P>, shift: P) -> Option<P::Scalar> {
-        let centre = hull.min.midpoint(hull.max);
-        let half_diagonal = (hull.max - centre).length();
-        let gap = collider.gap(centre + shift);
-        (gap - half_diagonal < self.thickness).then(|| collider.key_scale(gap + half_diagonal))
     }
 
     /// The distance and outward normal of `collider` at `p` (a point plus its

@@ -1,5 +1,6 @@
-//! What a frame can reach: the substeps the colliders and self-contact ask for, and which
-//! colliders can be touched at all within the frame ([`Contacts`]' broad phase in time).
+//! What a frame can reach: the substeps the colliders and self-contact ask for, which
+//! colliders can be touched at all within the frame ([`Contacts`]' broad phase in time),
+//! and which boxes of a drawn curve or surface a collider is near.
 
 use super::{Contacts, Touch};
 use crate::collider::Collider;
@@ -86,6 +87,22 @@ impl<P: Point> Contacts<'_, P> {
                 .colliders
                 .iter()
                 .any(|c| self.reachable(c, (object, reach), dt))
+    }
+
+    /// The [`search_key`](Collider::search_key) scale for `hull`, or `None` when every point
+    /// of `hull` is at least the thickness from `collider` moved by `shift`: the distance
+    /// changes no faster than the point moves, so every point of the box is at least
+    /// d(centre) - half its diagonal away (and at most d(centre) + half of it).
+    pub(super) fn near(
+        &self,
+        collider: &Collider<P>,
+        hull: Aabb<P>,
+        shift: P,
+    ) -> Option<P::Scalar> {
+        let centre = hull.min.midpoint(hull.max);
+        let half_diagonal = (hull.max - centre).length();
+        let gap = collider.gap(centre + shift);
+        (gap - half_diagonal < self.thickness).then(|| collider.key_scale(gap + half_diagonal))
     }
 
     /// For [`Sleep`](crate::Sleep): a key of the colliders that can touch
