@@ -216,14 +216,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 108 times the rope's bare step (106 in the fastest batches of one run; 0.12 ms a
-    /// frame on the development machine), on average 113 times while it falls into the pile
-    /// and 150 times while it is whipped round by its held end, 16 times lying
-    /// straight on the floor, and 20 times (19 in the fastest batches) for a 24-particle
-    /// rope lying still in a flat spiral: a heap of rope is costly, keep its particles few.
-    /// Section (l) gives these for every integrator (settled in the pile 10 to 124 times its
-    /// bare step, still in the spiral 3.9 to 19.4 times: the dearer the integrator's own
-    /// step, the less).
+    /// cost 103 times the rope's bare step (0.11 ms a frame on the development machine), on
+    /// average 110 times while it falls into the pile and 145 times while it is whipped
+    /// round by its held end, 16 times lying straight on the floor, and 18 times for a
+    /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
+    /// particles few. Section (l) gives these for every integrator (settled in the pile 9 to
+    /// 119 times its bare step, still in the spiral 3.8 to 17.7 times: the dearer the
+    /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
     /// has an edge of its drawn surface through itself (`tests/suite/contacts.rs`) and steps
