@@ -35,8 +35,10 @@
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
 //!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
-//!   the particles (`docs/summary.md` (g): 1 445 against 388 ns a frame for an 8-particle
-//!   rope drawn as a B-spline on a peg 0.1× its spacing).
+//!   the particles (`docs/summary.md` (g): 1 262 against 327 ns a frame for an 8-particle
+//!   rope drawn as a B-spline on a peg 0.1× its spacing). In floats a ball near a cubic
+//!   span is first judged against the capsule round the span's chord that holds its
+//!   control points: a ball clear of it by the thickness takes no search.
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
 //! surface off itself: spans (cells) that are not neighbours stay a diameter apart, found by
