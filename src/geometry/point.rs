@@ -49,6 +49,20 @@ pub trait Point:
         self.length() < limit
     }
 
+    /// Whether this vector is longer than `other`, without the roots (see
+    /// [`Scalar::norm_above`]): in `Q16` the longer by it has a [`length`](Self::length) at
+    /// least as large.
+    ///
+    /// ```
+    /// use dunas::prelude::*;
+    /// let (a, b) = (Vec2::new(3.0f32, 4.0), Vec2::new(0.0, 5.0));
+    /// assert!(!a.longer_than(b) && a.longer_than(Vec2::new(4.9, 0.0)));
+    /// ```
+    #[inline]
+    fn longer_than(self, other: Self) -> bool {
+        self.length() > other.length()
+    }
+
     /// [`length`](Self::length) and its inverse (0 for a zero vector), for a length and a
     /// direction at once: see [`Scalar::norm_and_inverse`] (in `Q16`, no division).
     #[inline]
@@ -331,6 +345,10 @@ macro_rules! impl_ops {
             #[inline]
             fn shorter_than(self, limit: S) -> bool {
                 S::norm_below(&[$(self.$f),+], limit)
+            }
+            #[inline]
+            fn longer_than(self, other: Self) -> bool {
+                S::norm_above(&[$(self.$f),+], &[$(other.$f),+])
             }
             #[inline]
             fn length_and_inverse(self) -> (S, S) {

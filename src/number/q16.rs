@@ -327,6 +327,11 @@ impl Scalar for Q16 {
     }
 
     #[inline]
+    fn norm_above(xs: &[Self], ys: &[Self]) -> bool {
+        squared_bits(xs) > squared_bits(ys)
+    }
+
+    #[inline]
     fn norm_and_inverse(xs: &[Self]) -> (Self, Self) {
         let (root, inverse) = root_and_inverse(squared_bits(xs));
         (
@@ -463,6 +468,44 @@ mod tests {
             assert!(!Q16::norm_below(&xs, Q16::ZERO));
         }
         assert!(below > 1000 && above > 1000, "{below} {above}");
+    }
+
+    /// `norm_above` answers exactly: against the sums of squares of the coordinates' bits in
+    /// `f64` (exact below 2²⁶ bits a coordinate), and the longer by it never has the shorter
+    /// root; equal vectors are not above each other.
+    #[test]
+    fn norm_above_is_exact() {
+        let mut seed = 0x1b87_3593_u32;
+        let mut next = |bits: u32| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            Q16::from_bits((seed >> (32 - bits)) as i32 - (1 << (bits - 1)))
+        };
+        let exact = |v: &[Q16]| {
+            v.iter()
+                .map(|x| f64::from(x.to_bits()).powi(2))
+                .sum::<f64>()
+        };
+        let (mut above, mut not) = (0, 0);
+        for round in 0..20_000 {
+            let bits = if round % 2 == 0 { 12 } else { 24 };
+            let xs = [next(bits), next(bits)];
+            // Every third pair one unit apart in a coordinate, where the roots often tie.
+            let ys = if round % 3 == 0 {
+                [xs[0] + Q16::EPSILON, xs[1]]
+            } else {
+                [next(bits), next(bits)]
+            };
+            let answer = Q16::norm_above(&xs, &ys);
+            assert_eq!(answer, exact(&xs) > exact(&ys), "{xs:?} {ys:?}");
+            assert!(!answer || Q16::norm(&xs) >= Q16::norm(&ys), "{xs:?} {ys:?}");
+            assert!(!Q16::norm_above(&xs, &xs));
+            (above, not) = if answer {
+                (above + 1, not)
+            } else {
+                (above, not + 1)
+            };
+        }
+        assert!(above > 1000 && not > 1000, "{above} {not}");
     }
 
     #[test]

@@ -120,6 +120,13 @@ pub trait Scalar:
     fn norm_below(xs: &[Self], limit: Self) -> bool {
         Self::norm(xs) < limit
     }
+    /// Whether [`norm`](Self::norm)`(xs)` is above `norm(ys)`, without the roots: floats
+    /// compare the sums of squares (to rounding), `Q16` its exact 64-bit sums (the longer by
+    /// them has a root at least as large).
+    #[inline]
+    fn norm_above(xs: &[Self], ys: &[Self]) -> bool {
+        Self::norm(xs) > Self::norm(ys)
+    }
     /// [`norm`](Self::norm) and its inverse (0 for a zero norm), for a length and a
     /// direction at once. Floats: a division, exact to its rounding. `Q16`: the norm as
     /// exact as [`norm`](Self::norm)'s, the inverse from the root's own reciprocal estimate,
@@ -218,6 +225,11 @@ macro_rules! impl_float {
                     s += x * x;
                 }
                 limit > 0.0 && s < limit * limit
+            }
+            #[inline]
+            fn norm_above(xs: &[Self], ys: &[Self]) -> bool {
+                let squares = |v: &[Self]| v.iter().fold(0.0, |s, &x| s + x * x);
+                squares(xs) > squares(ys)
             }
             #[inline]
             fn norm(xs: &[Self]) -> Self {
@@ -327,6 +339,26 @@ mod tests {
             let norm = f64::norm(&xs);
             if (norm - limit).abs() > 1e-12 * limit {
                 assert_eq!(f64::norm_below(&xs, limit), norm < limit, "{xs:?} {limit}");
+            }
+        }
+    }
+
+    /// Floats' `norm_above` answers as the roots do, for vectors whose norms are apart by
+    /// more than their rounding: 3-4-5 triangles exactly, and random vectors in `f64`.
+    #[test]
+    fn norm_above_answers_as_the_roots() {
+        assert!(!f32::norm_above(&[3.0, 4.0], &[0.0, 5.0]));
+        assert!(f32::norm_above(&[3.0, 4.0], &[0.0, 4.999]));
+        let mut x = 0.3f64;
+        for _ in 0..10_000 {
+            let mut next = || {
+                x = (x * 3.9 * (1.0 - x)).clamp(1e-9, 1.0 - 1e-9);
+                (x - 0.5) * 200.0
+            };
+            let (xs, ys) = ([next(), next(), next()], [next(), next(), next()]);
+            let (a, b) = (f64::norm(&xs), f64::norm(&ys));
+            if (a - b).abs() > 1e-12 * a.max(b) {
+                assert_eq!(f64::norm_above(&xs, &ys), a > b, "{xs:?} {ys:?}");
             }
         }
     }

@@ -602,22 +602,21 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     pub(crate) fn bounds_and_top_speed(&self, dt: P::Scalar) -> (Aabb<P>, P::Scalar) {
         let (x, v) = (self.positions(), self.velocities());
         let first = Aabb::point(x.first().copied().unwrap_or_default());
-        // Lengths in `Q16`, whose square saturates past 181 units a second; in floats the
-        // root of the largest square, the same number for one root instead of one a particle.
-        let size = |v: &P| match P::Scalar::FIXED_POINT {
-            true => v.length(),
-            false => v.dot(*v),
-        };
-        let (bounds, most) = x
-            .iter()
-            .zip(v)
-            .fold((first, P::Scalar::ZERO), |(b, most), (x, v)| {
-                (b.including(*x), most.max(size(v)))
-            });
-        let fastest = if P::Scalar::FIXED_POINT {
-            most
-        } else {
-            most.sqrt()
+        // In `Q16`, whose squares saturate past 181 units a second, the length of the
+        // longest velocity by exact 64-bit sums; in floats the root of the largest square.
+        let (bounds, (longest, most)) = x.iter().zip(v).fold(
+            (first, (P::default(), P::Scalar::ZERO)),
+            |(b, (longest, most)), (x, v)| match P::Scalar::FIXED_POINT {
+                true => (
+                    b.including(*x),
+                    (if v.longer_than(longest) { *v } else { longest }, most),
+                ),
+                false => (b.including(*x), (longest, most.max(v.dot(*v)))),
+            },
+        );
+        let fastest = match P::Scalar::FIXED_POINT {
+            true => longest.length(),
+            false => most.sqrt(),
         };
         (bounds, fastest + self.settings.gravity.length() * dt)
     }
