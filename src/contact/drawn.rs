@@ -194,8 +194,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
 /// and 4 units in the last place of the coordinates, for the rounding) is clear of the
 /// span. One division and two roots; `false` for every solid but a ball, and in `Q16`
 /// (whose products of a short chord keep few bits, and of a long one saturate; its roots
-/// and division cost a Cortex-M0 more than the searches they save), which then take the
-/// search.
+/// and division are dear on a Cortex-M0), which then take the search.
 pub(super) fn ball_clears_span<P: Point>(
     collider: &Collider<P>,
     b: [P; 4],

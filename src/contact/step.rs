@@ -54,13 +54,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         })
     }
 
-    /// A box that holds what `touch` tests, from the particles' box `b`, which holds their polyline
-    /// and their Bézier and B-spline curves and surfaces (each inside its control points'
-    /// convex hull), grown for a Catmull-Rom or natural spline by the largest coordinate step
-    /// between particles next in memory (such a spline bulges past its particles by a
-    /// fraction of its spacing along each axis). No root.
+    /// A box that holds what `touch` tests, from the particles' box `b`, which holds their
+    /// polyline and their Bézier and B-spline curves and surfaces (each inside its control
+    /// points' convex hull), grown for a Catmull-Rom or natural spline by the largest
+    /// coordinate step between particles next in memory (such a spline bulges past its
+    /// particles by a fraction of its spacing along each axis). No root.
     fn drawn_bounds(&self, touch: Touch, b: Aabb<P>) -> Aabb<P> {
-        let x = self.positions();
         use Smoothing::{CatmullRom, NaturalSpline};
         let bulging = matches!(
             touch,
@@ -69,6 +68,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if !bulging {
             return b;
         }
+        let x = self.positions();
         let step = x.windows(2).fold(P::Scalar::ZERO, |most, w| {
             (0..P::DIM).fold(most, |most, d| {
                 most.max((w[1].coord(d) - w[0].coord(d)).abs())

@@ -436,15 +436,20 @@ mod tests {
         assert_eq!(Q16::norm(&[Q16::MIN, Q16::MIN]), Q16::MAX);
     }
 
+    /// Random numbers of `bits` significant bits (signed, from units of 2⁻¹⁶), the same
+    /// from the same `seed` (a 32-bit linear congruential generator).
+    fn random_bits(mut seed: u32) -> impl FnMut(u32) -> Q16 {
+        move |bits| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            Q16::from_bits((seed >> (32 - bits)) as i32 - (1 << (bits - 1)))
+        }
+    }
+
     /// `norm_below` answers exactly: against the sum of squares of the coordinates' bits in
     /// `f64` (exact below 2²⁶ bits a coordinate), and as `norm`'s root does.
     #[test]
     fn norm_below_is_exact() {
-        let mut seed = 0x2545_f491_u32;
-        let mut next = |bits: u32| {
-            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            Q16::from_bits((seed >> (32 - bits)) as i32 - (1 << (bits - 1)))
-        };
+        let mut next = random_bits(0x2545_f491);
         let (mut below, mut above) = (0, 0);
         for round in 0..20_000 {
             let bits = if round % 2 == 0 { 12 } else { 24 };
@@ -475,11 +480,7 @@ mod tests {
     /// root; equal vectors are not above each other.
     #[test]
     fn norm_above_is_exact() {
-        let mut seed = 0x1b87_3593_u32;
-        let mut next = |bits: u32| {
-            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-            Q16::from_bits((seed >> (32 - bits)) as i32 - (1 << (bits - 1)))
-        };
+        let mut next = random_bits(0x1b87_3593);
         let exact = |v: &[Q16]| {
             v.iter()
                 .map(|x| f64::from(x.to_bits()).powi(2))
