@@ -128,10 +128,9 @@ impl<P: Point> Contacts<'_, P> {
         } else {
             // Two segments between the particles: their nearest points exactly.
             let ends = |span: usize| (pos[span], pos[(span + 1) % K]);
-            let ((p0, p1), (q0, q1)) = (ends(a), ends(b));
-            let (u, v, _) = segments_nearest((p0, p1), (q0, q1));
+            let (u, v, apart) = segments_nearest(ends(a), ends(b));
             // Apart: no weights to take, no root.
-            if !(p0 + (p1 - p0) * u - (q0 + (q1 - q0) * v)).shorter_than(gap) {
+            if !apart.shorter_than(gap) {
                 return zero;
             }
             (Near::only((u, v)), false)

@@ -183,7 +183,8 @@ fn nearest<P: Point>(
                 skipped[i][j] = Some(near);
                 continue;
             }
-            let (s, t, d) = segments_nearest((pa[i], pa[i + 1]), (pb[j], pb[j + 1]));
+            let (s, t, apart) = segments_nearest((pa[i], pa[i + 1]), (pb[j], pb[j + 1]));
+            let d = apart.dot(apart);
             chords[i][j] = Some((d, s, t));
             if best.is_none_or(|(kept, _, _)| d < kept) {
                 best = Some((d, i, j));
@@ -387,8 +388,8 @@ const SAMPLES: usize = 4;
 const NEWTON_STEPS: usize = 8;
 /// Times a Newton step that does not bring the points nearer is cut at most.
 const CUTS: usize = 4;
-/// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the squared
-/// distance (no root): the first's parameter where the lines come nearest (its start when
+/// The nearest points of segments `p` and `q`: their parameters in `[0, 1]` and the first's
+/// point less the second's (no root): the first's parameter where the lines come nearest (its start when
 /// they are parallel), clamped; the second's nearest that point, and past an end that end
 /// and the first's nearest it again. One division, and one a segment. In `Q16` the
 /// parameters come from the vectors scaled by a power of two (exactly) so that their
@@ -397,7 +398,7 @@ const CUTS: usize = 4;
 pub(super) fn segments_nearest<P: Point>(
     (p0, p1): (P, P),
     (q0, q1): (P, P),
-) -> (P::Scalar, P::Scalar, P::Scalar) {
+) -> (P::Scalar, P::Scalar, P) {
     let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
     let clamp = |x: P::Scalar| x.max(zero).min(one);
     let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
@@ -424,8 +425,7 @@ pub(super) fn segments_nearest<P: Point>(
     } else {
         (s, t)
     };
-    let d = p0 + d1 * s - (q0 + d2 * t);
-    (s, t, d.dot(d))
+    (s, t, p0 + d1 * s - (q0 + d2 * t))
 }
 
 /// The power of two, up to 2¹², that brings the largest coordinate of `vectors` to at least
@@ -490,13 +490,13 @@ mod tests {
             } else {
                 q0 + point(1.0)
             };
-            let (s, t, squared) = segments_nearest((p0, p1), (q0, q1));
+            let (s, t, apart) = segments_nearest((p0, p1), (q0, q1));
             let reference = segments_reference((p0, p1), (q0, q1));
             assert!((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t));
             assert!(
-                (squared.sqrt() - reference).abs() <= 1e-12,
+                (apart.length() - reference).abs() <= 1e-12,
                 "{k}: {} {reference}",
-                squared.sqrt()
+                apart.length()
             );
         }
         use crate::Q16;

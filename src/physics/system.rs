@@ -606,12 +606,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         // longest velocity by exact 64-bit sums; in floats the root of the largest square.
         let (bounds, (longest, most)) = x.iter().zip(v).fold(
             (first, (P::default(), P::Scalar::ZERO)),
-            |(b, (longest, most)), (x, v)| match P::Scalar::FIXED_POINT {
-                true => (
-                    b.including(*x),
-                    (if v.longer_than(longest) { *v } else { longest }, most),
-                ),
-                false => (b.including(*x), (longest, most.max(v.dot(*v)))),
+            |(b, (longest, most)), (x, v)| {
+                let fastest = match P::Scalar::FIXED_POINT {
+                    true => (if v.longer_than(longest) { *v } else { longest }, most),
+                    false => (longest, most.max(v.dot(*v))),
+                };
+                (b.including(*x), fastest)
             },
         );
         let fastest = match P::Scalar::FIXED_POINT {
