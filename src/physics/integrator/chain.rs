@@ -1,6 +1,7 @@
 //! Springs along a chain solved all at once: one direct (tridiagonal) solve per iteration,
 //! whatever the stiffness and the masses.
 
+use super::links::{Held, Links, compliance};
 use super::{Integrator, Model, Solved, State, sealed, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::shape::Shape;
@@ -41,20 +42,20 @@ use core::cell::Cell;
 /// bob fed one 1 000 times the rope's mass 90% of its fall's energy), the free particles'
 /// velocities are scaled down (`tests/suite/converge.rs`). Two passes over the particles
 /// and the other springs a solve.
-/// Contacts are resolved after each solve, not inside it; where they moved particles and
-/// stretched a link, the links are brought back with those particles 4 times as heavy. A
-/// collider much thinner than the particle spacing can still be pulled through by the links
-/// (a peg of a tenth of the spacing is; one of a third holds the rope,
-/// `direct_chain_rests_on_a_peg`); for thin pegs, use
-/// [`SymplecticEuler`](super::SymplecticEuler). A load far heavier than the rope pulls it
-/// straight across what it wraps, and the links then take back what the contacts did: a
-/// 70 kg player on a 2 kg rope pulls its drawn curve up to 0.7 m into the corner of a box
-/// it wraps (`examples/mcu_wrap.rs`: `inside_permille` of its 5 cm thickness), and such a
-/// step reports it: `converged` false, and in the residual how far the links took a
-/// particle back along its push, over the shortest link
-/// (`promises::a_chain_whose_links_pull_the_rope_into_what_it_touches_says_so`: every
-/// frame with the curve in the box says so).
-///
+/// **Contacts and links agree.** An inextensible chain's contacts come after each solve,
+/// and take turns with the links: each round of contacts is followed by a hold of the
+/// links (positions only, the motion it takes becoming velocity) in which every particle a
+/// contact pushed is held along its push (it slides across it, and is let go where its
+/// links pull it outward), until a round moves nothing, up to 8 rounds; where the links
+/// cannot get within the tolerance so, they have the last word. A step whose rounds did
+/// not agree, or left a link beyond the tolerance, says so (`converged` false, and in the
+/// residual how far the links took a particle back along its push, over the shortest
+/// link). A 70 kg player on a 2 kg rope wrapping a box 3 spacings wide
+/// (`examples/mcu_wrap.rs`) keeps its drawn curve out of the box and its links within
+/// 0.1% in every frame that says it converged (`promises::a_heavy_load_round_a_box_*`;
+/// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
+/// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
+/// contacts and up to `8 · iterations` Newton iterations of the links.
 /// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
 /// the defaults (4 solves of up to 4 iterations a 60 Hz frame), one substep a frame at any
 /// stiffness:
@@ -184,17 +185,16 @@ impl Integrator for DirectChain {
             settled.set(solved.converged);
             solved
         };
-        // The stretch the last solve's contacts left, and how far the links took back what
-        // they did, when they moved a particle.
+        // The stretch the last solve's contacts left, how far the links took back what they
+        // did, and whether the two agreed (a round of contacts or of links moved nothing),
+        // when the contacts moved a particle.
         let mut after_contacts = None;
-        let mut touch = |state: &mut State<P, Sh>, times| {
+        let mut touch = |state: &mut State<P, Sh>, times: (P::Scalar, P::Scalar)| {
             if !self.inextensible {
                 return touch(state, times);
             }
-            let before = state.pos;
-            touch(state, times);
-            after_contacts = self.hold_after_contacts(model, state, &before);
-            if let Some((stretch, _)) = after_contacts {
+            after_contacts = self.contact_rounds(model, state, times, touch);
+            if let Some((stretch, _, _)) = after_contacts {
                 settled.set(settled.get() && stretch <= tolerance_of(DirectChain::TOLERANCE));
             }
         };
@@ -207,9 +207,9 @@ impl Integrator for DirectChain {
             &mut touch,
             solve,
         );
-        if let Some((stretch, undone)) = after_contacts {
+        if let Some((stretch, undone, agreed)) = after_contacts {
             let off = stretch.max(undone);
-            solved.converged &= off <= tolerance_of(DirectChain::TOLERANCE);
+            solved.converged &= agreed && off <= tolerance_of(DirectChain::TOLERANCE);
             solved.stretch = stretch;
             solved.residual = solved.residual.max(off);
         }
@@ -218,56 +218,123 @@ impl Integrator for DirectChain {
 }
 
 impl DirectChain {
-    /// After the contacts of a solve: where they moved particles (from `before`) and left
-    /// a link beyond the tolerance, the links are brought back, positions only, with each
-    /// particle a contact moved 4 times as heavy, so that the links and the contacts mostly
-    /// agree at the end of the solve (made much heavier, a rope pulled over a box's corner
-    /// by a heavy load would fight the box's faces, stretching further each frame). Returns
-    /// the links' stretch then and how much of the contacts' work they undid: the farthest
-    /// a particle was taken back along its push, over the shortest link's rest length (about
-    /// how deep the curve went back in); `None` when no contact moved a particle (at no
-    /// cost). A square root a link and a particle when one did. Out of line: most solves
+    /// The contacts of a solve (`touch`, at `times`: its length and the time left in the
+    /// frame) and the links in turns: each round of contacts is followed by a hold of the
+    /// links ([`hold_after_contacts`](Self::hold_after_contacts)), and the rounds go on,
+    /// with no time passing (`h` 0: no collider moves, no friction takes back sliding),
+    /// while a hold moves a particle, up to [`CONTACT_ROUNDS`]. Returns the last hold's
+    /// stretch and undoing, and whether the contacts and the links agreed (the last round's
+    /// contacts or hold moved nothing); `None` when the contacts moved nothing.
+    fn contact_rounds<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
+        &self,
+        model: &Model<'_, P, Sh, T>,
+        state: &mut State<P, Sh>,
+        (h, lag): (P::Scalar, P::Scalar),
+        touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
+    ) -> Option<(P::Scalar, P::Scalar, bool)> {
+        let mut before = state.pos;
+        touch(state, (h, lag));
+        if Sh::flat(&state.pos) == Sh::flat(&before) {
+            return None;
+        }
+        let mut normal = Sh::filled(P::default());
+        for round in 1..=CONTACT_ROUNDS {
+            let pushed = state.pos;
+            let (stretch, undone) =
+                self.hold_after_contacts(model, state, (&before, &mut normal), h);
+            let agreed = Sh::flat(&state.pos) == Sh::flat(&pushed);
+            if agreed || round == CONTACT_ROUNDS {
+                return Some((stretch, undone, agreed));
+            }
+            before = state.pos;
+            touch(state, (P::Scalar::ZERO, lag));
+            if Sh::flat(&state.pos) == Sh::flat(&before) {
+                return Some((stretch, undone, true));
+            }
+        }
+        None
+    }
+
+    /// After a round of contacts in a solve of `h`: where they moved particles (from
+    /// `before`) and left a link beyond the tolerance, the links are brought back, positions
+    /// only, with each particle a contact pushed held along its push ([`Held`]: it slides
+    /// across it but not back along it, and is let go where its links pull it outward), and
+    /// the motion that takes becomes velocity (none when `h` is 0). Where the links cannot
+    /// get within the tolerance so, they are brought back with every particle free: the
+    /// links have the last word. `normal` keeps each held particle's push from one round to
+    /// the next. Returns the links' stretch then and how much of the contacts' work they
+    /// undid: the farthest a held particle was taken back along its push, over the shortest
+    /// link's rest length (about how deep the curve went back in). Up to `4 · HOLD_ITERATIONS · iterations` Newton
+    /// iterations, and a square root a particle the contacts moved. Out of line: most solves
     /// touch nothing.
     #[inline(never)]
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
         model: &Model<'_, P, Sh, T>,
         state: &mut State<P, Sh>,
-        before: &Sh::PerParticle<P>,
-    ) -> Option<(P::Scalar, P::Scalar)> {
+        (before, normal): (&Sh::PerParticle<P>, &mut Sh::PerParticle<P>),
+        h: P::Scalar,
+    ) -> (P::Scalar, P::Scalar) {
+        let (zero, w) = (P::Scalar::ZERO, model.inv_mass());
         let (x, before) = (Sh::flat(&state.pos), Sh::flat(before));
-        if x == before {
-            return None;
-        }
-        let mut w = *model.inv_mass;
-        for ((w, &x), &b) in Sh::flat_mut(&mut w).iter_mut().zip(x).zip(before) {
-            if x != b {
-                *w = *w * P::Scalar::ratio(1, 4);
+        // Each particle a contact moved is held along its push from now on in this solve,
+        // unless it moved against a neighbour that moved further: a drawn spline's
+        // counterweight (a Catmull-Rom span's outer particles move back when its inner
+        // ones are pushed out).
+        let moved = |i: usize| x[i] - before[i];
+        let mut pushed_out = Sh::filled(false);
+        let held = Sh::flat_mut(normal)
+            .iter_mut()
+            .zip(Sh::flat_mut(&mut pushed_out));
+        for (i, (n, out)) in held.enumerate() {
+            let push = moved(i);
+            let counter = |j: usize| {
+                let other = moved(j);
+                other.dot(push) < zero && other.longer_than(push)
+            };
+            if (i > 0 && counter(i - 1)) || (i + 1 < x.len() && counter(i + 1)) {
+                continue;
+            }
+            let (length, inverse) = push.length_and_inverse();
+            if length > zero {
+                (*n, *out) = (push * inverse, true);
             }
         }
-        let mut links = Links::<P, Sh>::new(model, None);
-        let iterations = self.iterations.max(1);
+        let mut links = Links::<P, Sh>::new(model, None).measured_finely();
+        let iterations = self.iterations.max(1).saturating_mul(HOLD_ITERATIONS);
         let pushed = state.pos;
-        let stretch = links.bring_back(Sh::flat_mut(&mut state.pos), Sh::flat(&w), iterations);
-        let zero = P::Scalar::ZERO;
-        let mut undone = zero;
+        let x = Sh::flat_mut(&mut state.pos);
+        let mut held = Held {
+            w,
+            normal: Sh::flat_mut(normal),
+        };
+        let mut stretch = links.bring_back(x, &mut held, (iterations, links.close));
+        if stretch > tolerance_of(DirectChain::TOLERANCE) {
+            stretch = links.bring_back(x, &mut { w }, (iterations, links.close));
+        }
         let (x, pushed) = (Sh::flat(&state.pos), Sh::flat(&pushed));
-        for ((&x, &p), &b) in x.iter().zip(pushed).zip(before) {
-            let (push, inverse) = (p - b).length_and_inverse();
-            if push > zero {
+        if h > zero {
+            let inv_h = P::Scalar::ONE / h;
+            let v = Sh::flat_mut(&mut state.vel);
+            for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(pushed).zip(w) {
+                if w > zero {
+                    *v += (x - p) * inv_h;
+                }
+            }
+        }
+        let mut undone = zero;
+        let pushes = pushed.iter().zip(before).zip(Sh::flat(&pushed_out));
+        for (&x, ((&p, &b), &out)) in x.iter().zip(pushes) {
+            if out {
+                let (_, inverse) = (p - b).length_and_inverse();
                 undone = undone.max((p - x).dot(p - b) * inverse);
             }
         }
-        let shortest = (Sh::flat(&links.rest).iter().zip(Sh::flat(&links.linked)))
-            .filter(|&(_, &linked)| linked)
-            .fold(None, |least: Option<P::Scalar>, (&rest, _)| {
-                Some(least.map_or(rest, |least| least.min(rest)))
-            });
-        let undone = match shortest {
-            Some(rest) if rest > zero && undone > zero => undone / rest,
-            _ => zero,
-        };
-        Some((stretch, undone))
+        let shortest = links.shortest();
+        match shortest > zero && undone > zero {
+            true => (stretch, undone / shortest),
+            false => (stretch, zero),
+        }
     }
 
     /// A share `h` of a step in solves of `h / 2^k`: a solve whose links end beyond the
@@ -348,7 +415,11 @@ impl DirectChain {
         }
         let mut links = Links::<P, Sh>::new(model, None);
         let iterations = self.iterations.max(1);
-        let off = links.bring_back(Sh::flat_mut(&mut state.pos), w, iterations);
+        let off = links.bring_back(
+            Sh::flat_mut(&mut state.pos),
+            &mut { w },
+            (iterations, links.exact),
+        );
         let x = Sh::flat_mut(&mut state.pos);
         for ((x, &hand), &w) in x.iter_mut().zip(Sh::flat(&hands)).zip(w) {
             if w <= zero {
@@ -399,7 +470,7 @@ impl DirectChain {
             // unmeasured (the check below measures). Far from it (the one before was cut
             // short, as in a whip), it takes the line search too.
             let whole = iteration > 1 && iteration == iterations && links.took_whole;
-            links.solve(Sh::flat_mut(&mut state.pos), w, whole);
+            links.solve(Sh::flat_mut(&mut state.pos), &mut { w }, whole);
             if super::xpbd::project(model, Sh::flat_mut(&mut state.pos), compliance, 1) {
                 links.measured = None;
             } else if self.inextensible && links.exact() {
@@ -470,324 +541,18 @@ fn never_gain<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     }
 }
 
-/// The links of a row of particles (link `i` joins particle `i` to `i + 1`; the last slot is
-/// unused) and the scratch of their solve, in the particles' own layout.
-struct Links<P: Point, Sh: Shape> {
-    rest: Sh::PerParticle<P::Scalar>,
-    compliance: Sh::PerParticle<P::Scalar>,
-    linked: Sh::PerParticle<bool>,
-    /// Each link's multiplier, carried from one iteration to the next.
-    lambda: Sh::PerParticle<P::Scalar>,
-    dir: Sh::PerParticle<P>,
-    /// Thomas's algorithm: each row's off-diagonal over its pivot, then its solution.
-    ratio: Sh::PerParticle<P::Scalar>,
-    solved: Sh::PerParticle<P::Scalar>,
-    /// The positions before a Newton step, for its line search.
-    before: Sh::PerParticle<P>,
-    /// Each link's length and its inverse at the positions now, and their squared stretch,
-    /// once measured (the line search measures them; the next iteration starts from them).
-    length: Sh::PerParticle<P::Scalar>,
-    inverse: Sh::PerParticle<P::Scalar>,
-    measured: Option<P::Scalar>,
-    /// Whether the last iteration's line search took the whole Newton step.
-    took_whole: bool,
-    /// The squared stretch within which held links are exact: that of 10⁻⁶ of the rope's
-    /// length (springs stretch by design: they take every iteration).
-    exact: P::Scalar,
-}
-
-/// A spring's compliance `1 / (k h²)` in a solve of `h`, as `(1/h) / (k h)` from `1/h`: in
-/// `Q16`, `h²` of a short solve is below the format's resolution, and a stiffness past its
-/// range leaves 0 (held, inextensible).
-fn compliance<S: Scalar>(inv_h: S, h: S, k: S) -> S {
-    inv_h / (k * h)
-}
-
 /// A tolerance given as `(numerator, denominator)`, in the format.
-fn tolerance_of<S: Scalar>((n, d): (u32, u32)) -> S {
+pub(super) fn tolerance_of<S: Scalar>((n, d): (u32, u32)) -> S {
     S::ratio(n, d)
 }
+
+/// Most rounds of contacts and links after a solve ([`DirectChain::contact_rounds`]).
+const CONTACT_ROUNDS: u8 = 8;
 
 /// Most times a solve is halved, whatever [`DirectChain::halvings`] says: 4 096 solves a
 /// share.
 const MOST_HALVINGS: u8 = 12;
 
-/// Most times a Newton step is halved before it is taken as it is.
-const MAX_HALVINGS: u8 = 4;
-
-/// Each link's length and its inverse into `length`, and `Σ (l − rest)²` over the links:
-/// what a Newton step must lower.
-fn measure<P: Point>(
-    x: &[P],
-    rest: &[P::Scalar],
-    linked: &[bool],
-    (length, inverse): (&mut [P::Scalar], &mut [P::Scalar]),
-) -> P::Scalar {
-    let mut sum = P::Scalar::ZERO;
-    for i in 0..x.len().saturating_sub(1) {
-        if linked[i] {
-            (length[i], inverse[i]) = (x[i + 1] - x[i]).length_and_inverse();
-            let c = length[i] - rest[i];
-            sum += c * c;
-        }
-    }
-    sum
-}
-
-impl<P: Point, Sh: Shape> Links<P, Sh> {
-    /// The links of `model`'s springs from particle `i` to `i + 1` that have a free end,
-    /// each with its spring's compliance `1 / (k h²)` for a solve of `h` when given as
-    /// `(1 / h, h)` (inextensible without).
-    fn new<T: Topology<P::Scalar>>(
-        model: &Model<'_, P, Sh, T>,
-        h: Option<(P::Scalar, P::Scalar)>,
-    ) -> Self {
-        let zero = P::Scalar::ZERO;
-        let w = model.inv_mass();
-        let mut links = Links::<P, Sh> {
-            rest: Sh::filled(zero),
-            compliance: Sh::filled(zero),
-            linked: Sh::filled(false),
-            lambda: Sh::filled(zero),
-            dir: Sh::filled(P::default()),
-            ratio: Sh::filled(zero),
-            solved: Sh::filled(zero),
-            before: Sh::filled(P::default()),
-            length: Sh::filled(zero),
-            inverse: Sh::filled(zero),
-            measured: None,
-            took_whole: false,
-            exact: zero,
-        };
-        model.topology.for_each_spring(|i, j, length, m| {
-            if i.abs_diff(j) == 1 {
-                let i = i.min(j);
-                Sh::flat_mut(&mut links.rest)[i] = length;
-                Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
-                if let (Some((inv_h, h)), true) = (h, m.stiffness > zero) {
-                    Sh::flat_mut(&mut links.compliance)[i] = compliance(inv_h, h, m.stiffness);
-                }
-            }
-        });
-        let rest: P::Scalar = Sh::flat(&links.rest).iter().fold(zero, |sum, &l| sum + l);
-        let exact = rest * P::Scalar::ratio(1, 1_000_000);
-        links.exact = exact * exact;
-        links
-    }
-
-    /// Whether the last iteration measured the links within 10⁻⁶ of the rope's length.
-    fn exact(&self) -> bool {
-        self.measured.is_some_and(|r| r <= self.exact)
-    }
-
-    /// The largest distance of a link at `x` from its goal, relative to its rest length:
-    /// `|l − g| / rest`, `g = rest − α̃ λ` its goal (its rest length when inextensible; a
-    /// spring's multiplier is known to the format's resolution only, so 16 units of it are
-    /// allowed for: in `Q16`, 0.02% of a 1 m link under a compliance of 1). First from the
-    /// squared lengths, `|l² − g²| / g²` (about twice the ratio): where every link is within
-    /// twice the tolerance that way, only the largest is measured (one square root), and
-    /// the ratio is the largest to within its own square; otherwise every link is measured
-    /// ([`off_measured`](Self::off_measured)). About five multiplications a link.
-    fn off(&mut self, x: &[P]) -> P::Scalar {
-        let zero = P::Scalar::ZERO;
-        let (n, d) = DirectChain::TOLERANCE;
-        let twice = P::Scalar::ratio(2 * n, d);
-        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
-        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
-        // The largest ratio as its numerator and denominator, compared by products; a
-        // link of the same goal as the one before (a rope's) reuses its square and limit.
-        let (mut most, mut of, mut at) = (zero, P::Scalar::ONE, None);
-        let (mut last, mut g2, mut limit) = (zero, zero, zero);
-        for i in (0..x.len().saturating_sub(1)).filter(|&i| linked[i]) {
-            let c = compliance[i];
-            let g = if c > zero {
-                rest[i] - c * lambda[i]
-            } else {
-                rest[i]
-            };
-            if g != last {
-                (last, g2) = (g, g * g);
-                limit = g2 * twice;
-            }
-            let d = x[i + 1] - x[i];
-            let off = (d.dot(d) - g2).abs();
-            if !(off.is_finite() && g2 > zero && off <= limit) {
-                return self.off_measured(x);
-            }
-            let larger = if g2 == of {
-                off >= most
-            } else {
-                off * of >= most * g2
-            };
-            if larger {
-                (most, of, at) = (off, g2, Some(i));
-            }
-        }
-        let Some(i) = at else {
-            return zero;
-        };
-        let off = ((x[i + 1] - x[i]).length() - rest[i] + compliance[i] * lambda[i]).abs();
-        (off - compliance[i] * tiny_length::<P::Scalar>()).max(zero) / rest[i]
-    }
-
-    /// [`off`](Self::off) from every link's length: measures the links unless the last
-    /// iteration did. A multiplication a link and one division.
-    #[cold]
-    #[inline(never)]
-    fn off_measured(&mut self, x: &[P]) -> P::Scalar {
-        let zero = P::Scalar::ZERO;
-        let (rest, linked) = (Sh::flat(&self.rest), Sh::flat(&self.linked));
-        let (length, inverse) = (
-            Sh::flat_mut(&mut self.length),
-            Sh::flat_mut(&mut self.inverse),
-        );
-        if self.measured.is_none() {
-            self.measured = Some(measure(x, rest, linked, (length, inverse)));
-        }
-        let (compliance, lambda) = (Sh::flat(&self.compliance), Sh::flat(&self.lambda));
-        let rounding = tiny_length::<P::Scalar>();
-        let (mut most, mut of) = (zero, P::Scalar::ONE);
-        for i in (0..x.len().saturating_sub(1)).filter(|&i| linked[i]) {
-            let off = (length[i] - rest[i] + compliance[i] * lambda[i]).abs();
-            let off = (off - compliance[i] * rounding).max(zero);
-            if off * of > most * rest[i] {
-                (most, of) = (off, rest[i]);
-            }
-        }
-        most / of
-    }
-
-    /// Moves the particles (positions only, by inverse masses `w`) towards every link
-    /// within [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations; how
-    /// far off they end ([`off`](Self::off)). Does nothing when they are within already
-    /// (about five multiplications a link to find out).
-    #[inline(never)]
-    fn bring_back(&mut self, x: &mut [P], w: &[P::Scalar], iterations: u8) -> P::Scalar {
-        let off = self.off(x);
-        if off <= tolerance_of(DirectChain::TOLERANCE) {
-            return off;
-        }
-        for _ in 0..iterations.saturating_mul(4) {
-            self.solve(x, w, false);
-            if self.exact() {
-                break;
-            }
-        }
-        Sh::flat_mut(&mut self.lambda).fill(P::Scalar::ZERO);
-        self.off(x)
-    }
-
-    /// One Newton iteration: the links' tridiagonal system `(J W Jᵀ + α̃) Δλ = −C − α̃ λ` at
-    /// `x` solved by Thomas's algorithm (one inverse a link), and the particles moved by it:
-    /// with `whole`, by the whole step, unmeasured; otherwise the whole step or, while that
-    /// would not lower the links' squared stretch, half of it and so on (a line search,
-    /// [`took_whole`](Self::took_whole) unless it cut the step). A link too short to have a
-    /// direction sits the iteration out.
-    fn solve(&mut self, x: &mut [P], w: &[P::Scalar], whole: bool) {
-        let zero = P::Scalar::ZERO;
-        let (rest, compliance) = (Sh::flat(&self.rest), Sh::flat(&self.compliance));
-        let (linked, lambda) = (Sh::flat(&self.linked), Sh::flat_mut(&mut self.lambda));
-        let dir = Sh::flat_mut(&mut self.dir);
-        let (ratio, solved) = (
-            Sh::flat_mut(&mut self.ratio),
-            Sh::flat_mut(&mut self.solved),
-        );
-        let links = x.len().saturating_sub(1);
-        let length = Sh::flat_mut(&mut self.length);
-        let inverse = Sh::flat_mut(&mut self.inverse);
-        let residual = match self.measured {
-            Some(residual) => residual,
-            None => measure(x, rest, linked, (length, inverse)),
-        };
-        // Each link's direction and right-hand side `−C − α̃λ`; a zero direction marks one
-        // too short to have a direction.
-        for i in 0..links {
-            (dir[i], solved[i]) = (P::default(), zero);
-            if !linked[i] {
-                continue;
-            }
-            let d = x[i + 1] - x[i];
-            let l = length[i];
-            let mut b = rest[i] - l;
-            if compliance[i] > zero {
-                b -= compliance[i] * lambda[i];
-            }
-            if l > tiny_length::<P::Scalar>() {
-                (dir[i], solved[i]) = (d * inverse[i], b);
-            } else {
-                lambda[i] = zero;
-            }
-        }
-        // Forward sweep; row i couples to link i + 1 through particle i + 1 by
-        // `off_i = −w_{i+1} (n_i · n_{i+1})`.
-        let (mut prev_ratio, mut prev_solved, mut prev_off) = (zero, zero, zero);
-        for i in 0..links {
-            ratio[i] = zero;
-            if dir[i] == P::default() {
-                (prev_ratio, prev_solved, prev_off) = (zero, zero, zero);
-                continue;
-            }
-            let diag = w[i] + w[i + 1] + compliance[i] - prev_off * prev_ratio;
-            if diag <= zero {
-                (dir[i], solved[i]) = (P::default(), zero);
-                (prev_ratio, prev_solved, prev_off) = (zero, zero, zero);
-                continue;
-            }
-            let inv = diag.approx_recip();
-            let off = if i + 1 < links && dir[i + 1] != P::default() {
-                -(w[i + 1] * dir[i].dot(dir[i + 1]))
-            } else {
-                zero
-            };
-            ratio[i] = off * inv;
-            solved[i] = (solved[i] - prev_off * prev_solved) * inv;
-            (prev_ratio, prev_solved, prev_off) = (ratio[i], solved[i], off);
-        }
-        // Back substitution, then each particle moves by its links' pulls: the whole
-        // Newton step, or half of it, and so on, until the links' squared stretch falls
-        // (far from the solution, as in a whip, a full step can overshoot and feed on
-        // itself).
-        for i in (0..links.saturating_sub(1)).rev() {
-            solved[i] -= ratio[i] * solved[i + 1];
-        }
-        let before = Sh::flat_mut(&mut self.before);
-        if !whole {
-            before.copy_from_slice(x);
-        }
-        self.took_whole = true;
-        for halving in 0..=MAX_HALVINGS {
-            // Each particle moves by the difference of its two links' pulls.
-            let mut pull = P::default();
-            for i in 0..x.len() {
-                let out = if i < links && dir[i] != P::default() {
-                    dir[i] * solved[i]
-                } else {
-                    P::default()
-                };
-                if w[i] > zero {
-                    x[i] += (pull - out) * w[i];
-                }
-                pull = out;
-            }
-            if whole {
-                self.measured = None;
-                return;
-            }
-            let after = measure(x, rest, linked, (length, inverse));
-            self.measured = Some(after);
-            if halving == MAX_HALVINGS || after <= residual {
-                break;
-            }
-            self.took_whole = false;
-            x.copy_from_slice(before);
-            for s in solved.iter_mut() {
-                *s = *s * P::Scalar::ratio(1, 2);
-            }
-        }
-        for i in 0..links {
-            if dir[i] != P::default() {
-                lambda[i] += solved[i];
-            }
-        }
-    }
-}
+/// Newton iterations (times 4) a hold after contacts takes at most, for each of a solve's
+/// ([`DirectChain::hold_after_contacts`]).
+const HOLD_ITERATIONS: u8 = 2;

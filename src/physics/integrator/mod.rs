@@ -35,6 +35,7 @@ mod chain;
 mod direct;
 mod euler;
 mod implicit;
+mod links;
 mod model;
 mod rk4;
 mod verlet;
