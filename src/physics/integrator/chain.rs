@@ -55,7 +55,10 @@ use core::cell::Cell;
 /// 0.1% in every frame that says it converged (`promises::a_heavy_load_round_a_box_*`;
 /// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
 /// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
-/// contacts and up to `8 · iterations` Newton iterations of the links.
+/// contacts and up to `8 · iterations` Newton iterations of the links (twice that where
+/// they fall back): in the player's scene on a Cortex-M0, 284 772 instructions a frame on
+/// average and 2.5 million at worst (`docs/devices.md`), 4.9 times the frame without the
+/// box in f32 on the host (`docs/summary.md`, targets).
 /// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
 /// the defaults (4 solves of up to 4 iterations a 60 Hz frame), one substep a frame at any
 /// stiffness:
@@ -264,9 +267,9 @@ impl DirectChain {
     /// links have the last word. `normal` keeps each held particle's push from one round to
     /// the next. Returns the links' stretch then and how much of the contacts' work they
     /// undid: the farthest a held particle was taken back along its push, over the shortest
-    /// link's rest length (about how deep the curve went back in). Up to `4 · HOLD_ITERATIONS · iterations` Newton
-    /// iterations, and a square root a particle the contacts moved. Out of line: most solves
-    /// touch nothing.
+    /// link's rest length (about how deep the curve went back in). Up to
+    /// `8 · HOLD_ITERATIONS · iterations` Newton iterations (two holds), and two square
+    /// roots a particle the contacts moved. Out of line: most solves touch nothing.
     #[inline(never)]
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
