@@ -56,7 +56,7 @@ use core::cell::Cell;
 /// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
 /// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
 /// contacts and up to `8 · iterations` Newton iterations of the links (twice that where
-/// they fall back): in the player's scene on a Cortex-M0, 284 772 instructions a frame on
+/// they fall back): in the player's scene on a Cortex-M0, 284 227 instructions a frame on
 /// average and 2.5 million at worst (`docs/devices.md`), 4.9 times the frame without the
 /// box in f32 on the host (`docs/summary.md`, targets).
 /// Measured (`tests/suite/physics.rs`, `direct_chain_*`; `tests/suite/promises.rs`), with
@@ -268,8 +268,8 @@ impl DirectChain {
     /// the next. Returns the links' stretch then and how much of the contacts' work they
     /// undid: the farthest a held particle was taken back along its push, over the shortest
     /// link's rest length (about how deep the curve went back in). Up to
-    /// `8 · HOLD_ITERATIONS · iterations` Newton iterations (two holds), and two square
-    /// roots a particle the contacts moved. Out of line: most solves touch nothing.
+    /// `8 · HOLD_ITERATIONS · iterations` Newton iterations (two holds), and a square root
+    /// a particle the contacts moved. Out of line: most solves touch nothing.
     #[inline(never)]
     fn hold_after_contacts<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
         &self,
@@ -285,10 +285,12 @@ impl DirectChain {
         // counterweight (a Catmull-Rom span's outer particles move back when its inner
         // ones are pushed out).
         let moved = |i: usize| x[i] - before[i];
-        let mut pushed_out = Sh::filled(false);
+        // This round's pushes as unit vectors (zero where not held): `normal` lets go of a
+        // held particle during the hold, these do not.
+        let mut pushes = Sh::filled(P::default());
         let held = Sh::flat_mut(normal)
             .iter_mut()
-            .zip(Sh::flat_mut(&mut pushed_out));
+            .zip(Sh::flat_mut(&mut pushes));
         for (i, (n, out)) in held.enumerate() {
             let push = moved(i);
             let counter = |j: usize| {
@@ -300,7 +302,7 @@ impl DirectChain {
             }
             let (length, inverse) = push.length_and_inverse();
             if length > zero {
-                (*n, *out) = (push * inverse, true);
+                (*n, *out) = (push * inverse, push * inverse);
             }
         }
         let mut links = Links::<P, Sh>::new(model, None).measured_finely();
@@ -326,12 +328,8 @@ impl DirectChain {
             }
         }
         let mut undone = zero;
-        let pushes = pushed.iter().zip(before).zip(Sh::flat(&pushed_out));
-        for (&x, ((&p, &b), &out)) in x.iter().zip(pushes) {
-            if out {
-                let (_, inverse) = (p - b).length_and_inverse();
-                undone = undone.max((p - x).dot(p - b) * inverse);
-            }
+        for ((&x, &p), &out) in x.iter().zip(pushed).zip(Sh::flat(&pushes)) {
+            undone = undone.max((p - x).dot(out));
         }
         let shortest = links.shortest();
         match shortest > zero && undone > zero {
