@@ -4,7 +4,7 @@
 
 use dunas::collider::Collider;
 use dunas::contact::{Contacts, Touch};
-use dunas::integrator::{DirectChain, Integrator, SymplecticEuler};
+use dunas::integrator::{DirectChain, DirectSprings, Integrator, SymplecticEuler};
 use dunas::{Material, Point as _, Rope, Settings, Smoothing, Vec2, Vec3};
 
 use crate::common::draped_rope;
@@ -275,7 +275,13 @@ pub fn run(run: &mut Run) {
         );
     }
     // The player's rope of `examples/mcu_wrap.rs` wrapping its box, under `DirectChain`.
-    let wrap = player_round_a_box(if run.quick { 3 } else { 7 });
+    let reps = if run.quick { 3 } else { 7 };
+    let device = DirectChain {
+        iterations: 2,
+        substeps: 1,
+        ..DirectChain::default()
+    };
+    let wrap = round_a_box(device, (2000.0, 70.0), reps);
     run.target(
         "DirectChain with contacts: a 70 kg player's 12-particle rope wrapping a box 3 spacings \
          wide (one solve of 2 iterations a frame, 600 frames) keeps its drawn curve within 1% of \
@@ -296,6 +302,26 @@ pub fn run(run: &mut Run) {
          the box, pulls the rope in by centimetres, and the rounds of contacts and links after \
          it (each pushed particle held along its push) end with a link beyond 0.1% or do not \
          agree within 8 rounds: those steps say so",
+    );
+    // The same scene under `DirectSprings` (defaults), a 20 kg load on its springs.
+    let springy = round_a_box(DirectSprings::default(), (2000.0, 20.0), reps);
+    run.target(
+        "DirectSprings with contacts: a 20 kg load's 12-particle rope (2 000 N/m) wrapping the \
+         same box (defaults, 600 frames) keeps its drawn curve within 1% of the thickness of \
+         the box at the end of each step",
+        format!(
+            "deepest {:.2}% of the thickness into the box, {} of 600 frames flagged \
+             unconverged, {} ending against it; {:.1}× the frame without the box (fastest \
+             {:.1}×)",
+            springy.deepest * 100.0,
+            springy.flagged,
+            springy.touching,
+            springy.ratio.1,
+            springy.ratio.0
+        ),
+        springy.deepest <= 0.01,
+        "a solve's pushes are large, and after 8 rounds of contacts one still moved a particle \
+         by more than 0.1% of a link, dragging a span pushed out before back in",
     );
     // The towel of the test `a_towel_folded_over_a_rod_never_passes_through_itself`.
     let (crossings, closest, with) =
@@ -653,36 +679,17 @@ struct Wrap {
     ratio: (f64, f64),
 }
 
-/// The scene of `examples/mcu_wrap.rs` in f32: a 10 m, 2 kg rope of 12 particles held at
-/// one end, a 70 kg player on the other, let go level above a box 3 spacings wide, drawn as
-/// a Catmull-Rom curve that touches the box, stepped 600 frames at 60 Hz by `DirectChain`
-/// at one solve of up to 2 iterations.
-fn player_round_a_box(reps: usize) -> Wrap {
-    type Player = Rope<Vec2<f32>, 12, 12, DirectChain>;
-    let solver = DirectChain {
-        iterations: 2,
-        substeps: 1,
-        ..DirectChain::default()
-    };
-    let settings = Settings {
-        gravity: Vec2::new(0.0, -9.81),
-        damping: 0.1,
-        ..Settings::default()
-    }
-    .with_integrator(solver);
-    let material = Material {
-        stiffness: 2000.0,
-        damping: 1.0,
-    };
-    let (start, end) = (Vec2::new(0.0, 0.0), Vec2::new(10.0, 0.0));
-    let mut rope: Player = Rope::new(start, end, 2.0, material, settings).expect("a rope");
-    rope.hang(11, 70.0).expect("a player");
-    let (low, high) = (Vec2::new(2.5, -3.5), Vec2::new(2.5 + 30.0 / 11.0, -2.0));
-    let block = [Collider::aabb(low, high).expect("a box")];
+/// The scene of `examples/mcu_wrap.rs` in f32 (`tests/common`'s `rope_round_a_box`, a
+/// `load` in kg on springs of `stiffness` N/m), stepped 600 frames at 60 Hz by `solver`. The
+/// player's rope: `DirectChain` at one solve of up to 2 iterations, 70 kg on 2 000 N/m.
+fn round_a_box<I: Integrator>(solver: I, (stiffness, load): (f64, f64), reps: usize) -> Wrap {
+    let (mut rope, block) =
+        crate::common::rope_round_a_box::<f32, I>(solver, stiffness, load).expect("the scene");
+    let block = [block];
     let thickness = 0.05;
     let contacts =
         Contacts::new(&block, thickness, Touch::Drawn(Smoothing::CatmullRom)).expect("contacts");
-    let run = |rope: &Player, touching: bool| {
+    let run = |rope: &crate::common::BoxRope<f32, I>, touching: bool| {
         let mut rope = rope.clone();
         for _ in 0..600 {
             let info = match touching {

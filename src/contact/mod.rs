@@ -53,7 +53,7 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider, is 7.5% of an 8-particle rope's bare step (`docs/summary.md`,
+//! box test per collider, is 7.8% of an 8-particle rope's bare step (`docs/summary.md`,
 //! targets).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
@@ -218,12 +218,12 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 88 times the rope's bare step (0.11 ms a frame on the development machine), on
-    /// average 106 times while it falls into the pile and 138 times while it is whipped
-    /// round by its held end, 14 times lying straight on the floor, and 18 times for a
+    /// cost 103 times the rope's bare step (0.11 ms a frame on the development machine), on
+    /// average 105 times while it falls into the pile and 140 times while it is whipped
+    /// round by its held end, 16 times lying straight on the floor, and 18 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
     /// particles few. Section (l) gives these for every integrator (settled in the pile 9 to
-    /// 116 times its bare step, still in the spiral 3.8 to 17.9 times: the dearer the
+    /// 118 times its bare step, still in the spiral 3.8 to 18.1 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never

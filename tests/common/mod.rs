@@ -719,3 +719,40 @@ pub fn hung_cloth<const U: usize, I: Integrator>(
     cloth.set_inv_mass(U - 1, 0.0)?;
     Ok(cloth)
 }
+
+/// The rope of [`rope_round_a_box`].
+pub type BoxRope<S, I> = dunas::Rope<Vec2<S>, 12, 12, I>;
+
+/// The box of [`rope_round_a_box`].
+pub type BoxCollider<S> = Collider<Vec2<S>>;
+
+/// The scene of `examples/mcu_wrap.rs` in format `S`: a 10 m, 2 kg rope of 12 particles held
+/// at one end and a `load` (kg) on the other, let go level above a box 3 particle spacings
+/// wide, its springs `stiffness` N/m (damped 1 N·s/m) under a drag of 0.1/s, stepped by
+/// `solver`; and the box. Its contacts take the drawn Catmull-Rom curve, 5 cm thick.
+///
+/// # Errors
+/// The rope's ([`Rope::new`](dunas::Rope::new), `hang`): a stiffness or load that is not
+/// positive.
+pub fn rope_round_a_box<S: Scalar, I: Integrator>(
+    solver: I,
+    stiffness: f64,
+    load: f64,
+) -> Result<(BoxRope<S, I>, BoxCollider<S>), Error> {
+    let at = |x: f64, y: f64| Vec2::new(S::from_f64(x), S::from_f64(y));
+    let settings = Settings {
+        gravity: at(0.0, -9.81),
+        damping: S::from_f64(0.1),
+        ..Settings::default()
+    }
+    .with_integrator(solver);
+    let material = Material {
+        stiffness: S::from_f64(stiffness),
+        damping: S::ONE,
+    };
+    let two = S::from_f64(2.0);
+    let mut rope = dunas::Rope::new(at(0.0, 0.0), at(10.0, 0.0), two, material, settings)?;
+    rope.hang(11, S::from_f64(load))?;
+    let block = Collider::aabb(at(2.5, -3.5), at(2.5 + 30.0 / 11.0, -2.0))?;
+    Ok((rope, block))
+}

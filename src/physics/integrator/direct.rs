@@ -2,7 +2,7 @@
 //! back-substitution an iteration, whatever the stiffness (projective dynamics).
 
 use super::banded::{Factor, Springs};
-use super::{Integrator, Model, Solved, State, sealed, tiny_length};
+use super::{Integrator, Model, Solved, State, sealed, split_solves, tiny_length};
 use crate::physics::force::ForceField;
 use crate::physics::hash::StateHash;
 use crate::physics::shape::Shape;
@@ -35,7 +35,20 @@ use core::cell::Cell;
 /// diagonals only (a block-Jacobi split: converged iterations reach the same positions). A
 /// held particle moves with its hand through the solves and enters them as a fixed end.
 /// Velocities are each solve's displacement over its length. Contacts are resolved after
-/// each solve.
+/// each solve, in rounds: after the first, rounds with no time passing follow (no collider
+/// moves, friction takes back no sliding) while the last one moved a particle by more than
+/// 0.1% of the shortest spring's rest length along an axis ([`TOLERANCE`](super::TOLERANCE)),
+/// up to 8 (fewer when two rounds in a row move no less than the one before: contacts
+/// pushing against each other); a solve whose rounds still moved a particle that far reports
+/// [`converged`](crate::system::StepInfo::converged) `false`. A long solve's pushes are large,
+/// and a push on one span moves particles that a span pushed out before is drawn through:
+/// with one round, a `DirectSprings` rope pulled round a box by a load went 2 to 14 times its
+/// thickness into the box; with the rounds it stays out (`tests/suite/promises.rs`,
+/// `a_load_round_a_box_keeps_a_springy_rope_out_of_it`; a 20 kg load's rope in f32, 600
+/// frames: never in the box, 7.6 times the frame without the box, `docs/summary.md`,
+/// targets). A frame that touches pays a round more at least, each a pass of the contacts;
+/// a rope pressed onto many pegs pays up to 8 (16 pegs 0.1 times its spacing under an
+/// 8-particle rope: 15.7 times its bare frame, 3.0 times in the last run before the rounds; section (l)).
 ///
 /// A spring's `damping` `c` acts along it from the velocities at the solve's start, as an
 /// explicit force clamped to what stops its ends' closing speed in one solve
@@ -88,7 +101,7 @@ use core::cell::Cell;
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 98 700 on average, 132 800 measured and 269 100 at the defaults (along conjugate directions). Memory: the factor, the
+/// takes 99 800 on average, 133 900 measured and 265 600 at the defaults (along conjugate directions). Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -126,8 +139,8 @@ pub struct DirectSprings {
     /// `iterations` beyond it reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
     /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
     /// over the springs (a square root and a division each) after each iteration: the
-    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 132 800 instructions
-    /// a frame measured and 98 700 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
+    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 133 900 instructions
+    /// a frame measured and 99 800 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
     /// solve takes all its `iterations` and reports `converged` with a residual of 0.
     pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
@@ -223,7 +236,14 @@ impl Integrator for DirectSprings {
                 self.solve(model, state, memory, hs, forces, (None, None))
             }
         };
-        super::split_solves(self.substeps, model, state, (h, lag), forces, touch, solve)
+        let mut agreed = true;
+        let mut touch = |state: &mut State<P, Sh>, times: (P::Scalar, P::Scalar)| {
+            agreed &= super::rounds::contact_rounds(model, state, times, touch);
+        };
+        let (times, n) = ((h, lag), self.substeps);
+        let mut solved = split_solves(n, model, state, times, forces, &mut touch, solve);
+        solved.converged &= agreed;
+        solved
     }
 }
 

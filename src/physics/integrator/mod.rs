@@ -38,6 +38,7 @@ mod implicit;
 mod links;
 mod model;
 mod rk4;
+mod rounds;
 mod verlet;
 mod xpbd;
 
