@@ -118,7 +118,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         match reach {
             Reach::Asleep => check_non_negative(dt, "dt").map(|dt| self.doze(dt)),
             Reach::Apart(near) | Reach::Within(_, near) => {
-                self.step_resolving(dt, forces, (P::Scalar::ZERO, near), |_, _, _| {})
+                self.step_resolving(dt, forces, (None, near), |_, _, _| {})
             }
         }
     }
@@ -140,7 +140,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             contacts.advance_bodies(times.0);
             resolve(state, w, times)
         };
-        contacts.finish_report(self.step_resolving(dt, forces, (rate, near), resolve))
+        contacts.finish_report(self.step_resolving(dt, forces, (Some(rate), near), resolve))
     }
 
     /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the

@@ -508,6 +508,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             damping: self.settings.damping,
             time: self.time,
             settled: false,
+            touching: false,
         };
         let held = self.settings.integrator.holds_links();
         model.energy(self.positions(), self.velocities(), held)
@@ -594,7 +595,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if self.sleeps_under(&forces, Some(0)) && dt >= P::Scalar::ZERO && dt.is_finite() {
             return Ok(self.doze(dt));
         }
-        self.step_resolving(dt, forces, (P::Scalar::ZERO, Some(0)), |_, _, _| {})
+        self.step_resolving(dt, forces, (None, Some(0)), |_, _, _| {})
     }
 
     /// The particles' box, and the fastest a free particle can go this frame: its speed now
@@ -622,18 +623,17 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
-    /// time left in the frame))`, with at least `floor` substeps a second; `near` is the key
-    /// of the colliders within reach (`Some(0)` for none, `None` when one moves), for
-    /// [`Sleep`](crate::Sleep).
-    // Kept out of line on a hosted target, so that the step of a sleeping object (the top
-    // of `step_with`) is inlined into the caller without this step's prologue; inlined on a
-    // microcontroller, where it saves half a kilobyte of flash.
+    /// time left in the frame))`, with at least `floor` substeps a second (`None`: no
+    /// contacts, `resolve` does nothing); `near` is the key of the colliders within reach
+    /// (`Some(0)` for none, `None` when one moves), for [`Sleep`](crate::Sleep).
+    // Out of line on a host, so that a sleeping object's step (the top of `step_with`) is
+    // inlined without this prologue; inlined on a microcontroller (half a KB of flash).
     #[cfg_attr(not(target_os = "none"), inline(never))]
     pub(crate) fn step_resolving<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         mut forces: F,
-        (floor, near): (P::Scalar, Option<u64>),
+        (floor, near): (Option<P::Scalar>, Option<u64>),
         mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let key = self.rest.key(&forces, near);
@@ -641,8 +641,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             check_non_negative(dt, "dt")?;
             return Ok(self.doze(dt));
         }
-        let (n, h, slow_motion) = self.plan_at_least(dt, floor)?;
-        let solved = self.substeps_or_undo(n, h, &mut forces, &mut resolve)?;
+        let (n, h, slow_motion) = self.plan_at_least(dt, floor.unwrap_or(P::Scalar::ZERO))?;
+        let solved = self.substeps_or_undo(n, h, &mut forces, floor.is_some(), &mut resolve)?;
         if self.rest.is_on() {
             let quiet = !slow_motion && solved.fits;
             self.rest
@@ -679,7 +679,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
         self.rest.wake();
-        let solved = self.substeps_or_undo(n, h, &mut forces, &mut |_, _, _| {})?;
+        let solved = self.substeps_or_undo(n, h, &mut forces, false, &mut |_, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
             simulated: h,
@@ -700,13 +700,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         u16::try_from(snapped).unwrap_or(u16::MAX)
     }
 
-    /// `n` substeps of `h`, undone if the result is not sane (a held link's stretch past
-    /// [`MAX_STRETCH`] included); what the substeps reported.
+    /// `n` substeps of `h` (`touching`: `resolve` does something), undone if the result is
+    /// not sane (a held link's stretch past [`MAX_STRETCH`] included); what they reported.
     fn substeps_or_undo<F: ForceField<P>>(
         &mut self,
         n: u16,
         h: P::Scalar,
         forces: &mut F,
+        touching: bool,
         resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
     ) -> Result<Solved<P::Scalar>, Error> {
         let saved = (self.state, self.time);
@@ -721,6 +722,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 damping: self.settings.damping,
                 time: self.time,
                 settled,
+                touching,
             };
             let lag = h * P::Scalar::from_i16((n - k) as i16);
             let inv_mass = &self.inv_mass;

@@ -57,7 +57,7 @@ use core::cell::Cell;
 /// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
 /// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
 /// contacts and up to `8 · iterations` Newton iterations of the links (twice that where
-/// they fall back): in the player's scene on a Cortex-M0, 284 251 instructions a frame on
+/// they fall back): in the player's scene on a Cortex-M0, 284 245 instructions a frame on
 /// average and 2.5 million at worst (`docs/devices.md`), 4.2 times the frame without the
 /// box in f32 on the host (`docs/summary.md`, targets). With springs instead of links
 /// (`inextensible: false`), the contacts take rounds after each solve as
@@ -239,6 +239,10 @@ impl DirectChain {
         (h, lag): (P::Scalar, P::Scalar),
         touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
     ) -> Option<(P::Scalar, P::Scalar, bool)> {
+        if !model.touching {
+            touch(state, (h, lag));
+            return None;
+        }
         let mut before = state.pos;
         touch(state, (h, lag));
         if Sh::flat(&state.pos) == Sh::flat(&before) {

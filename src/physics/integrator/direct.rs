@@ -101,7 +101,7 @@ use core::cell::Cell;
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 99 800 on average, 133 900 measured and 265 600 at the defaults (along conjugate directions). Memory: the factor, the
+/// takes 98 800 on average, 132 900 measured and 264 600 at the defaults (along conjugate directions). Memory: the factor, the
 /// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
 /// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
 /// `n·10` scalars of stack in 3D.
@@ -139,8 +139,8 @@ pub struct DirectSprings {
     /// `iterations` beyond it reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
     /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
     /// over the springs (a square root and a division each) after each iteration: the
-    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 133 900 instructions
-    /// a frame measured and 99 800 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
+    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 132 900 instructions
+    /// a frame measured and 98 800 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
     /// solve takes all its `iterations` and reports `converged` with a residual of 0.
     pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.

@@ -30,6 +30,9 @@ pub struct Model<'a, P: Point, Sh: Shape, T> {
     /// tolerance left them (nothing else has moved them since): a method that holds its
     /// links need not check where they start.
     pub(crate) settled: bool,
+    /// `true` when the step resolves contacts after each substep (`false`: its `touch` does
+    /// nothing, and a direct solver's contact rounds need not look for what it moved).
+    pub(crate) touching: bool,
 }
 
 /// Springs shorter than this have no direction: 16 units of rounding.

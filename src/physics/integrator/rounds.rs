@@ -20,13 +20,18 @@ pub(super) const CONTACT_ROUNDS: u8 = 8;
 /// Contacts that push against each other (a rope pinched between two colliders) stop the
 /// rounds once two rounds in a row moved a particle no less than the round before each.
 /// Returns whether the last round moved no particle further than that (the contacts
-/// agree). Costs a copy of the positions and a pass over them a round.
+/// agree). Costs a copy of the positions and a pass over them a round, in a step that
+/// resolves contacts ([`Model::touching`]; nothing else in a plain step).
 pub(super) fn contact_rounds<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
     model: &Model<'_, P, Sh, T>,
     state: &mut State<P, Sh>,
     (h, lag): (P::Scalar, P::Scalar),
     touch: &mut impl FnMut(&mut State<P, Sh>, (P::Scalar, P::Scalar)),
 ) -> bool {
+    if !model.touching {
+        touch(state, (h, lag));
+        return true;
+    }
     let before = state.pos;
     touch(state, (h, lag));
     if Sh::flat(&state.pos) == Sh::flat(&before) {
