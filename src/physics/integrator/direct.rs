@@ -48,7 +48,8 @@ use core::cell::Cell;
 /// frames: never in the box, 7.6 times the frame without the box, `docs/summary.md`,
 /// targets). A frame that touches pays a round more at least, each a pass of the contacts;
 /// a rope pressed onto many pegs pays up to 8 (16 pegs 0.1 times its spacing under an
-/// 8-particle rope: 15.7 times its bare frame, 3.0 times in the last run before the rounds; section (l)).
+/// 8-particle rope: 15.7 times its bare frame, 3.0 times in the last run before the
+/// rounds; section (l)).
 ///
 /// A spring's `damping` `c` acts along it from the velocities at the solve's start, as an
 /// explicit force clamped to what stops its ends' closing speed in one solve
@@ -101,10 +102,10 @@ use core::cell::Cell;
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 98 800 on average, 132 900 measured and 264 600 at the defaults (along conjugate directions). Memory: the factor, the
-/// masses, the envelopes and the rows' particles, `n·(b + 2)` scalars, `n` 16-bit counts
-/// and `n` 32-bit indices in the system (5.0 KB for the 8×8 sail in `f32`), and about
-/// `n·10` scalars of stack in 3D.
+/// takes 98 800 on average, 132 900 measured and 264 600 at the defaults (along conjugate
+/// directions). Memory: the factor, the masses, the envelopes and the rows' particles,
+/// `n·(b + 2)` scalars, `n` 16-bit counts and `n` 32-bit indices in the system (5.0 KB for
+/// the 8×8 sail in `f32`), and about `n·10` scalars of stack in 3D.
 ///
 /// ```
 /// use dunas::integrator::DirectSprings;

@@ -13,13 +13,13 @@ pub(super) const CONTACT_ROUNDS: u8 = 8;
 
 /// A solve's contacts (`touch` at `times`: its length and the time left in the frame), then,
 /// if they moved a particle, rounds of them with no time passing (`h` 0: no collider moves,
-/// friction takes back no sliding) while the last round moved a particle by more than
-/// 0.1% of `model`'s shortest spring ([`TOLERANCE`]) along an axis, up to [`CONTACT_ROUNDS`]: a push on one part of the drawn
-/// curve or surface moves particles that parts already pushed out are drawn through, and a
-/// long solve's pushes are large enough to pull those back in.
-/// Contacts that push against each other (a rope pinched between two colliders) stop the
-/// rounds once two rounds in a row moved a particle no less than the round before each.
-/// Returns whether the last round moved no particle further than that (the contacts
+/// friction takes back no sliding) while the last round moved a particle by more than 0.1%
+/// of `model`'s shortest spring ([`TOLERANCE`]) along an axis, up to [`CONTACT_ROUNDS`]: a
+/// push on one part of the drawn curve or surface moves particles that parts already
+/// pushed out are drawn through, and a long solve's pushes are large enough to pull those
+/// back in. Contacts that push against each other (a rope pinched between two colliders)
+/// stop the rounds once two rounds in a row moved a particle no less than the round before
+/// each. Returns whether the last round moved no particle further than that (the contacts
 /// agree). Costs a copy of the positions and a pass over them a round, in a step that
 /// resolves contacts ([`Model::touching`]; nothing else in a plain step).
 pub(super) fn contact_rounds<P: Point, Sh: Shape, T: Topology<P::Scalar>>(
