@@ -351,8 +351,8 @@ fn a_heavy_load_round_a_box_keeps_the_rope_out_of_it_or_says_so() {
 /// after each solve the contacts take rounds, with no time passing, until a round moves no
 /// particle by more than 0.1% of a link, so a push on one span no longer leaves its
 /// neighbour drawn inside. A 20 kg load on 2 000 N/m springs, and a 2 kg one on 500 N/m
-/// (and for `DirectChain`, 70 kg on 2 000 N/m). With one round the curve went 2 to 14 times
-/// the thickness into the box under `DirectSprings`, and up to 5 times under `DirectChain`.
+/// (and for `DirectChain`, 70 kg on 2 000 N/m). With one round the curve went up to 14 times
+/// the thickness into the box under `DirectSprings`, and up to 5 times under `DirectChain` (in f32).
 /// The links stretch (springs), but never past the box's width, which the guarantee asks
 /// of a collider (at least as wide as the spacing).
 #[test]

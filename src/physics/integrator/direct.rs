@@ -42,7 +42,7 @@ use core::cell::Cell;
 /// pushing against each other); a solve whose rounds still moved a particle that far reports
 /// [`converged`](crate::system::StepInfo::converged) `false`. A long solve's pushes are large,
 /// and a push on one span moves particles that a span pushed out before is drawn through:
-/// with one round, a `DirectSprings` rope pulled round a box by a load went 2 to 14 times its
+/// with one round, a `DirectSprings` rope pulled round a box by a load went up to 14 times its
 /// thickness into the box; with the rounds it stays out (`tests/suite/promises.rs`,
 /// `a_load_round_a_box_keeps_a_springy_rope_out_of_it`; a 20 kg load's rope in f32, 600
 /// frames: never in the box, 7.6 times the frame without the box, `docs/summary.md`,
