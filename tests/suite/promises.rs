@@ -310,10 +310,7 @@ fn a_heavy_load_round_a_box_keeps_the_rope_out_of_it_or_says_so() {
         for frame in 0..240 {
             let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
             let n = rope.sample(Smoothing::CatmullRom, &mut curve).unwrap();
-            let depth = curve[..n]
-                .iter()
-                .map(|&p| -block[0].gap(p))
-                .fold(f64::MIN, f64::max);
+            let depth = depth_in(&block[0], &curve[..n]);
             let stretch = rope
                 .positions()
                 .windows(2)
@@ -381,10 +378,7 @@ fn round_a_box<I: Integrator>(solver: I, stiffness: f64, load: f64) {
     for _ in 0..600 {
         let _ = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
         let n = rope.sample(Smoothing::CatmullRom, &mut curve).unwrap();
-        let depth = curve[..n]
-            .iter()
-            .map(|&p| -block[0].gap(p))
-            .fold(f64::MIN, f64::max);
+        let depth = depth_in(&block[0], &curve[..n]);
         let links = rope.positions().windows(2);
         let link = links
             .map(|pair| (pair[1] - pair[0]).length())
@@ -408,4 +402,12 @@ fn round_a_box<I: Integrator>(solver: I, stiffness: f64, load: f64) {
         deepest <= 0.01 * thickness,
         "{solver:?}, {stiffness} N/m, {load} kg: {deepest} m into the box"
     );
+}
+
+/// How far the deepest point of `curve` is inside `block` (m; negative: outside by that).
+fn depth_in(block: &Collider<Vec2<f64>>, curve: &[Vec2<f64>]) -> f64 {
+    curve
+        .iter()
+        .map(|&p| -block.gap(p))
+        .fold(f64::MIN, f64::max)
 }
