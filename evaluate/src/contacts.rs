@@ -241,8 +241,9 @@ pub fn run(run: &mut Run) {
             costs.lying.step, costs.lying.floor
         ),
         floor_lying <= 1.0,
-        "each span on the floor takes its deepest point in closed form, its particle weights \
-         and, after its push, a redraw of the 7 spans its particles weigh in, every substep",
+        "the floor's contacts run once a frame (a rope at rest moves less than its thickness \
+         in a frame), but each span on it then takes its deepest point in closed form, its \
+         particle weights and, after its push, a redraw of the 7 spans its particles weigh in",
     );
     for (what, target, state) in [
         ("settled in a pile on a floor (5 drops)", 10.0, &costs.piled),

@@ -6,6 +6,7 @@ use super::collider::coulomb;
 use super::drawn::{DrawnSpans, SurfacePoint, Weights, point_of, spread};
 use super::memory::{PairMemory, Recall};
 use super::span_pairs::{Near, Samples, segments_nearest};
+use super::timing::{Braking, Timing};
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::{Aabb, Point, Scalar};
 
@@ -31,7 +32,7 @@ impl<P: Point> Contacts<'_, P> {
     pub(super) fn resolve_self<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        h: P::Scalar,
+        timing: Timing<'_, P>,
         curve: &mut impl DrawnSpans<P, K>,
         memory: Option<&mut PairMemory<P, K>>,
     ) -> Option<P::Scalar> {
@@ -58,7 +59,8 @@ impl<P: Point> Contacts<'_, P> {
             if apart >= 2 {
                 let parts = (&mut *pos, &mut *vel, inv_mass);
                 let known = (samples.as_mut(), memory.as_deref_mut());
-                let (depth, moved) = self.push_apart(parts, (h, friction), &*curve, (a, b), known);
+                let (depth, moved) =
+                    self.push_apart(parts, (timing, friction), &*curve, (a, b), known);
                 // A curved span's search reads the curve: the spans each point's particles
                 // weigh in are redrawn after each push. Straight spans are read from the
                 // particles, and the curve redrawn once at the end.
@@ -96,7 +98,7 @@ impl<P: Point> Contacts<'_, P> {
     fn push_apart<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        (h, friction): (P::Scalar, P::Scalar),
+        (timing, friction): (Timing<'_, P>, P::Scalar),
         curve: &impl DrawnSpans<P, K>,
         (a, b): (usize, usize),
         (samples, mut memory): (Option<&mut Samples<P, K>>, Option<&mut PairMemory<P, K>>),
@@ -163,11 +165,12 @@ impl<P: Point> Contacts<'_, P> {
             return zero;
         }
         let normal = d * (P::Scalar::ONE / dist);
+        let braking = || timing.braking(g.entries(), P::default());
         let parted = parting(
             normal,
             gap - dist,
             point_of(vel, g.entries()),
-            (friction, h),
+            (friction, braking),
         );
         // `None`: no free particle moves the pair (both spans held).
         match spread(pos, vel, inv_mass, g.entries(), parted) {
@@ -188,7 +191,7 @@ impl<P: Point> Contacts<'_, P> {
     pub(super) fn resolve_self_surface<const U: usize, const V: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P], &mut [P], &[P::Scalar]),
-        h: P::Scalar,
+        timing: Timing<'_, P>,
         smoothing: Smoothing,
         controls: &mut Option<[[P; U]; V]>,
     ) -> P::Scalar {
@@ -248,7 +251,13 @@ impl<P: Point> Contacts<'_, P> {
             let g = |i: usize| at_a.wu[i % U] * at_a.wv[i / U] - at_b.wu[i % U] * at_b.wv[i / U];
             let normal = d * (P::Scalar::ONE / dist);
             let g = (0..U * V).map(|i| (i, g(i)));
-            let parted = parting(normal, gap - dist, point_of(vel, g.clone()), (friction, h));
+            let braking = || timing.braking(g.clone(), P::default());
+            let parted = parting(
+                normal,
+                gap - dist,
+                point_of(vel, g.clone()),
+                (friction, braking),
+            );
             if spread(pos, vel, inv_mass, g, parted).is_some() {
                 deepest = deepest.max(gap - dist);
             }
@@ -336,12 +345,12 @@ fn sweep<P: Point>(
 /// The position and velocity changes that part two points `depth` too near along `normal`
 /// (from the second to the first), moving at `relative` (the first's velocity less the
 /// second's): pushed apart by `depth`, their approach stopped, their sliding braked by
-/// Coulomb `friction` and that braking taken back from this substep of `h`'s move.
+/// Coulomb `friction` and that braking taken back from their move ([`Braking`]).
 fn parting<P: Point>(
     normal: P,
     depth: P::Scalar,
     relative: P,
-    (friction, h): (P::Scalar, P::Scalar),
+    (friction, braking): (P::Scalar, impl FnOnce() -> Braking<P>),
 ) -> (P, P) {
     let vn = relative.dot(normal);
     let dx = normal * depth;
@@ -349,8 +358,12 @@ fn parting<P: Point>(
         return (dx, P::default());
     }
     let push = -vn;
-    let brake = coulomb(relative - normal * vn, (friction * push, friction * push));
-    (dx - brake * h, normal * push - brake)
+    let slide = relative - normal * vn;
+    let brake = coulomb(slide, (friction * push, friction * push));
+    (
+        dx - braking().take_back(slide, brake, normal),
+        normal * push - brake,
+    )
 }
 
 /// The parameters `[u_a, v_a, u_b, v_b]` in `[0, 1]⁴` of the nearest points of two surface

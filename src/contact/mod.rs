@@ -4,8 +4,9 @@
 //! [`Contacts`] names the colliders, the thickness (radius) of the rope or cloth, and where to
 //! test ([`Touch`]). Stepping with it ([`Rope::step_touching`](crate::Rope::step_touching),
 //! [`Cloth::step_touching`](crate::Cloth::step_touching),
-//! [`MassSpring::step_touching_particles`](crate::MassSpring::step_touching_particles)) resolves the contacts after
-//! every substep, whatever the integrator: a point closer to a collider than the thickness is
+//! [`MassSpring::step_touching_particles`](crate::MassSpring::step_touching_particles)) resolves the contacts at
+//! the end of its substeps (which ones: **When** below), whatever the integrator: a point
+//! closer to a collider than the thickness is
 //! moved out along the collider's normal, and its velocity relative to the collider loses its
 //! inward part (times `1 + restitution`) and, by Coulomb's law, its sliding part: all of it
 //! while that stays within static friction times the normal change, else kinetic friction
@@ -35,10 +36,24 @@
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
 //!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
-//!   the particles (`docs/summary.md` (g): 1 262 against 327 ns a frame for an 8-particle
+//!   the particles (`docs/summary.md` (g): 1 948 against 561 ns a frame for an 8-particle
 //!   rope drawn as a B-spline on a peg 0.1× its spacing). In floats a ball near a cubic
 //!   span is first judged against the capsule round the span's chord that holds its
 //!   control points: a ball clear of it by the thickness takes no search.
+//!
+//! **When.** A step's substeps come from its springs' stiffness; its contacts need only run
+//! so often that no point moves further than the thickness between two runs against a
+//! collider it can reach (its centre line then never goes into the collider), judged as the
+//! substeps are (below), and at the step's end. They run sooner when a particle gets faster
+//! than that judgement allowed for, and at every substep with a thickness of 0, with
+//! self-contact, on a natural spline or with a collider that has a mass. A 16-particle
+//! rope lying on a floor, its springs asking for 7 substeps, meets the floor once a frame:
+//! the floor adds 2.01 times its bare step, where it added 12.8 times when the contacts ran
+//! at every substep (`docs/summary.md`, targets). After waited substeps, friction that
+//! holds a point still takes back all it slid since the contacts last ran (its particles'
+//! moves, weighted as in the point), so that a rope on a slope stays put as it did; kinetic
+//! friction takes back its braking times `h (n + 1) / 2` after `n` substeps of `h`, what it
+//! would have taken back of a steady slide at the end of each.
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
 //! surface off itself: spans (cells) that are not neighbours stay a diameter apart, found by
@@ -53,7 +68,7 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider, is 7.8% of an 8-particle rope's bare step (`docs/summary.md`,
+//! box test per collider, is 9.4% of an 8-particle rope's bare step (`docs/summary.md`,
 //! targets).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
@@ -89,6 +104,8 @@ mod memory;
 mod reach;
 mod span_pairs;
 mod step;
+mod surface;
+mod timing;
 
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
@@ -96,11 +113,11 @@ use crate::physics::system::StepInfo;
 use crate::{Error, Point, Scalar};
 use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
-use drawn::{
-    SurfacePoint, Weights, ball_clears_span, deepest_in_cell, point_inv_mass, point_of, spread,
-};
+use drawn::{Weights, ball_clears_span, point_inv_mass, point_of, spread};
 pub(crate) use memory::PairMemory;
-pub(crate) use step::Reach;
+pub(crate) use step::{Plan, Reach};
+use timing::Braking;
+pub(crate) use timing::Timing;
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
@@ -218,12 +235,12 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 103 times the rope's bare step (0.11 ms a frame on the development machine), on
-    /// average 105 times while it falls into the pile and 140 times while it is whipped
+    /// cost 105 times the rope's bare step (0.16 ms a frame on the development machine), on
+    /// average 95 times while it falls into the pile and 122 times while it is whipped
     /// round by its held end, 16 times lying straight on the floor, and 18 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
     /// particles few. Section (l) gives these for every integrator (settled in the pile 9 to
-    /// 118 times its bare step, still in the spiral 3.8 to 18.1 times: the dearer the
+    /// 120 times its bare step, still in the spiral 3.8 to 18.0 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
@@ -405,14 +422,13 @@ impl<'a, P: Point> Contacts<'a, P> {
         self.touch
     }
 
-    /// Pushes every particle with a mass out of every collider. `lag`: seconds from this
-    /// substep to the end of the frame (a kinematic collider is that far behind its pose).
+    /// Pushes every particle with a mass out of every collider at `timing`.
     pub(crate) fn resolve_particles(
         &self,
         pos: &mut [P],
         vel: &mut [P],
         inv_mass: &[P::Scalar],
-        (h, lag): (P::Scalar, P::Scalar),
+        timing: Timing<'_, P>,
     ) {
         for (k, collider) in self.colliders.iter().enumerate() {
             // A point outside the collider's box grown by the thickness is farther than the
@@ -421,11 +437,12 @@ impl<'a, P: Point> Contacts<'a, P> {
                 .outward()
                 .is_none()
                 .then(|| collider.bounds().grown(self.thickness));
-            for ((x, v), &w) in pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass) {
+            let particles = pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass);
+            for (i, ((x, v), &w)) in particles.enumerate() {
                 if w <= P::Scalar::ZERO {
                     continue;
                 }
-                let offset = self.offset(k, collider, lag);
+                let offset = self.offset(k, collider, timing.lag);
                 if reach.is_some_and(|r| !r.contains(*x + offset)) {
                     continue;
                 }
@@ -433,7 +450,8 @@ impl<'a, P: Point> Contacts<'a, P> {
                     continue;
                 };
                 let body = self.body(k, collider);
-                let (dx, dv, moved) = self.response(collider, body, (touch, *v, w), h);
+                let braking = || timing.braking([(i, P::Scalar::ONE)], body.0);
+                let (dx, dv, moved) = self.response(collider, body, (touch, *v, w), braking);
                 *x += dx;
                 *v += dv;
                 self.report(k, dv * (P::Scalar::ONE / w), moved);
@@ -451,7 +469,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     pub(crate) fn resolve_curve<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        times: (P::Scalar, P::Scalar),
+        timing: Timing<'_, P>,
         joined: &[bool; K],
         memory: Option<&mut PairMemory<P, K>>,
     ) {
@@ -465,27 +483,28 @@ impl<'a, P: Point> Contacts<'a, P> {
             Touch::DrawnLoop(s) if s != Smoothing::Bezier && K >= 3 => (s, true, true),
             touch => {
                 if self.self_friction.is_none() {
-                    return self.resolve_particles(pos, vel, inv_mass, times);
+                    return self.resolve_particles(pos, vel, inv_mass, timing);
                 }
                 let closed = matches!(touch, Touch::DrawnLoop(_)) && K >= 3;
                 (Smoothing::Polyline, closed, false)
             }
         };
         let resolve = |(pos, vel, w): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+                       timing: Timing<'_, P>,
                        drawn: &mut Smoothed<P, K>,
                        memory: Option<&mut PairMemory<P, K>>| {
             if on_curve {
-                self.resolve_spans((pos, vel, w), times, drawn, memory);
+                self.resolve_spans((pos, vel, w), timing, drawn, memory);
             } else {
                 // The particles out of the colliders, the segments off each other; the
                 // colliders have the last word.
                 let last = self.rounds(|| {
-                    self.resolve_particles(pos, vel, w, times);
+                    self.resolve_particles(pos, vel, w, timing);
                     drawn.rebuild(pos, (0, K - 1))?;
-                    self.resolve_self((&mut *pos, &mut *vel, w), times.0, drawn, None)
+                    self.resolve_self((&mut *pos, &mut *vel, w), timing, drawn, None)
                 });
                 if last {
-                    self.resolve_particles(pos, vel, w, times);
+                    self.resolve_particles(pos, vel, w, timing);
                 }
             }
         };
@@ -497,7 +516,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 Smoothed::open(smoothing, pos)
             };
             if let Ok(mut drawn) = curve {
-                resolve((pos, vel, inv_mass), &mut drawn, memory);
+                resolve((pos, vel, inv_mass), timing, &mut drawn, memory);
             }
             return;
         }
@@ -509,9 +528,14 @@ impl<'a, P: Point> Contacts<'a, P> {
             }
             let (run, m) = (start..end, end - start);
             start = end;
+            // The piece's motion since the contacts last ran, padded as the piece.
+            let mut slid = [P::default(); K];
+            if let Some(moved) = timing.slid() {
+                slid[..m].copy_from_slice(&moved[run.clone()]);
+            }
             if m == 1 {
                 let (p, v, w) = (&mut pos[run.clone()], &mut vel[run.clone()], &inv_mass[run]);
-                self.resolve_particles(p, v, w, times);
+                self.resolve_particles(p, v, w, timing.for_run(&slid[..1]));
                 continue;
             }
             // The piece, padded with its last particle (weight 0, held: nothing moves it).
@@ -522,7 +546,8 @@ impl<'a, P: Point> Contacts<'a, P> {
             let Ok(mut drawn) = Smoothed::open_first(smoothing, &piece.0, m) else {
                 continue;
             };
-            resolve((&mut piece.0, &mut piece.1, &piece.2), &mut drawn, None);
+            let parts = (&mut piece.0, &mut piece.1, &piece.2);
+            resolve(parts, timing.for_run(&slid), &mut drawn, None);
             pos[run.clone()].copy_from_slice(&piece.0[..m]);
             vel[run].copy_from_slice(&piece.1[..m]);
         }
@@ -535,29 +560,32 @@ impl<'a, P: Point> Contacts<'a, P> {
     pub(crate) fn resolve_spans<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        (h, lag): (P::Scalar, P::Scalar),
+        timing: Timing<'_, P>,
         curve: &mut impl DrawnSpans<P, K>,
         mut memory: Option<&mut PairMemory<P, K>>,
     ) {
-        let (gap, ending) = (self.thickness + self.thickness, lag <= P::Scalar::ZERO);
+        let (gap, ending) = (
+            self.thickness + self.thickness,
+            timing.lag <= P::Scalar::ZERO,
+        );
         let due = |m: &mut PairMemory<P, K>| m.due(curve, gap, ending);
         if self.self_friction.is_none() || !memory.as_deref_mut().is_none_or(due) {
-            self.resolve_colliders((pos, vel, inv_mass), (h, lag), curve);
+            self.resolve_colliders((pos, vel, inv_mass), timing, curve);
             return;
         }
         let last = self.rounds(|| {
             let parts = (&mut *pos, &mut *vel, inv_mass);
-            if !self.resolve_colliders(parts, (h, lag), curve) {
+            if !self.resolve_colliders(parts, timing, curve) {
                 return None;
             }
             let memory = memory.as_deref_mut();
             let parts = (&mut *pos, &mut *vel, inv_mass);
-            self.resolve_self(parts, h, curve, memory)
+            self.resolve_self(parts, timing, curve, memory)
         });
         // Self-contact's last pushes may reach into a collider: the colliders have the last
         // word (a floor is never passed; two spans may stay within the rounds' tolerance).
         if last {
-            self.resolve_colliders((pos, vel, inv_mass), (h, lag), curve);
+            self.resolve_colliders((pos, vel, inv_mass), timing, curve);
         }
         if let Some(memory) = memory {
             memory.checked(curve);
@@ -589,11 +617,11 @@ impl<'a, P: Point> Contacts<'a, P> {
     fn resolve_colliders<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        (h, lag): (P::Scalar, P::Scalar),
+        timing: Timing<'_, P>,
         curve: &mut impl DrawnSpans<P, K>,
     ) -> bool {
         for (k, collider) in self.colliders.iter().enumerate() {
-            let shift = self.offset(k, collider, lag);
+            let shift = self.offset(k, collider, timing.lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for span in 0..curve.span_count() {
                 let hull = curve.span_bounds(span);
@@ -625,7 +653,8 @@ impl<'a, P: Point> Contacts<'a, P> {
                     continue;
                 };
                 let body = self.body(k, collider);
-                let (dx, dv, shifted) = self.response(collider, body, (touch, v, w), h);
+                let braking = || timing.braking(weights.entries(), body.0);
+                let (dx, dv, shifted) = self.response(collider, body, (touch, v, w), braking);
                 if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
                     self.report(k, given, shifted);
                     if curve.rebuild(pos, weights.ends()).is_none() {
@@ -635,122 +664,6 @@ impl<'a, P: Point> Contacts<'a, P> {
             }
         }
         true
-    }
-
-    /// Pushes the drawn surface of a grid of particles (row `j` is `pos[j]`) out of every
-    /// collider (see the module docs), particle contacts when [`Touch::Particles`]; then, when
-    /// self-contact is on, the surface off itself (with [`Touch::Particles`], the flat
-    /// triangles between the particles), in rounds as a rope's curve.
-    pub(crate) fn resolve_surface<const U: usize, const V: usize>(
-        &self,
-        pos: &mut [[P; U]; V],
-        vel: &mut [[P; U]; V],
-        inv_mass: &[[P::Scalar; U]; V],
-        (h, lag): (P::Scalar, P::Scalar),
-        closed: bool,
-    ) {
-        // The points whose boxes hold the cells: the particles, or a natural spline's
-        // control net (it passes through the particles but bulges past them).
-        let mut controls = (self.touch == Touch::Drawn(Smoothing::NaturalSpline)).then(|| {
-            let mut net = *pos;
-            crate::curves::surface::natural_net(&mut net, closed, closed);
-            net
-        });
-        let (pos, vel, inv_mass) = (
-            pos.as_flattened_mut(),
-            vel.as_flattened_mut(),
-            inv_mass.as_flattened(),
-        );
-        let (smoothing, on_surface) = match self.touch {
-            Touch::Drawn(smoothing) => (smoothing, true),
-            _ => (Smoothing::Polyline, false),
-        };
-        let drawn = (
-            smoothing,
-            match smoothing {
-                Smoothing::CatmullRom => P::Scalar::ratio(25, 16),
-                _ => P::Scalar::ONE,
-            },
-        );
-        self.rounds(|| {
-            if on_surface {
-                self.surface_colliders::<U, V>(
-                    (&mut *pos, &mut *vel, inv_mass),
-                    (h, lag),
-                    (drawn, closed),
-                    &mut controls,
-                );
-            } else {
-                self.resolve_particles(pos, vel, inv_mass, (h, lag));
-            }
-            // Self-contact walks an open grid's cells: a closed one has none.
-            (!closed).then(|| {
-                let parts = (&mut *pos, &mut *vel, inv_mass);
-                self.resolve_self_surface::<U, V>(parts, h, drawn.0, &mut controls)
-            })
-        });
-    }
-
-    /// Pushes the surface `drawn` (its smoothing and its cells' overshoot) through the
-    /// particles `pos` of a `U × V` grid (`closed`: its rows and columns close on themselves,
-    /// a torus) out of every collider; `controls`: a natural spline's control net, kept up
-    /// to date.
-    fn surface_colliders<const U: usize, const V: usize>(
-        &self,
-        (pos, vel, inv_mass): (&mut [P], &mut [P], &[P::Scalar]),
-        (h, lag): (P::Scalar, P::Scalar),
-        ((smoothing, overshoot), closed): ((Smoothing, P::Scalar), bool),
-        controls: &mut Option<[[P; U]; V]>,
-    ) {
-        let mut surface = SurfacePoint::<P::Scalar, U, V>::new(smoothing, closed);
-        let columns = if closed { U } else { U - 1 };
-        let rows = if closed { V } else { V - 1 };
-        for (k, collider) in self.colliders.iter().enumerate() {
-            let shift = self.offset(k, collider, lag);
-            let reach = collider.bounds().moved(-shift).grown(self.thickness);
-            for cell in 0..columns * rows {
-                let (cu, cv) = (cell % columns, cell / columns);
-                let points = controls.as_ref().map_or(&*pos, |c| c.as_flattened());
-                let Some(hull) = surface.cell_bounds(points, (cu, cv), overshoot) else {
-                    continue;
-                };
-                if !hull.overlaps(&reach) {
-                    continue;
-                }
-                let Some(scale) = self.near(collider, hull, shift) else {
-                    continue;
-                };
-                let Some((u, v)) = deepest_in_cell(
-                    |u, v| {
-                        surface.at((cu, cv), (u, v));
-                        let x = surface.point(pos) + shift;
-                        (x, collider.search_key(x, scale))
-                    },
-                    |x, spacing| collider.gap(x) < self.thickness + spacing,
-                ) else {
-                    continue;
-                };
-                surface.at((cu, cv), (u, v));
-                let Some(touch) = self.touching(collider, surface.point(pos) + shift) else {
-                    continue;
-                };
-                let w = (0..U * V).map(|i| (i, surface.wu[i % U] * surface.wv[i / U]));
-                let Some(mobility) = point_inv_mass(inv_mass, w.clone()) else {
-                    continue;
-                };
-                let body = self.body(k, collider);
-                let v = surface.point(vel);
-                let (dx, dv, moved) = self.response(collider, body, (touch, v, mobility), h);
-                if let Some(given) = spread(pos, vel, inv_mass, w, (dx, dv)) {
-                    self.report(k, given, moved);
-                    if let Some(net) = controls {
-                        let grid = pos.as_chunks::<U>().0;
-                        *net = core::array::from_fn(|j| grid[j]);
-                        crate::curves::surface::natural_net(net, closed, closed);
-                    }
-                }
-            }
-        }
     }
 
     /// The distance and outward normal of `collider` at `p` (a point plus its
@@ -773,7 +686,7 @@ impl<'a, P: Point> Contacts<'a, P> {
         collider: &Collider<P>,
         (body_velocity, body_inv_mass): (P, P::Scalar),
         ((d, n), v, w): ((P::Scalar, P), P, P::Scalar),
-        h: P::Scalar,
+        braking: impl FnOnce() -> Braking<P>,
     ) -> (P, P, P) {
         let zero = P::Scalar::ZERO;
         let mut dx = n * (self.thickness - d);
@@ -783,8 +696,9 @@ impl<'a, P: Point> Contacts<'a, P> {
         if vn < zero {
             let push = -vn * (P::Scalar::ONE + collider.restitution());
             let (stick, kinetic) = collider.friction();
-            let brake = coulomb(relative - n * vn, (stick * push, kinetic * push));
-            (dx, dv) = (dx - brake * h, n * push - brake);
+            let slide = relative - n * vn;
+            let brake = coulomb(slide, (stick * push, kinetic * push));
+            (dx, dv) = (dx - braking().take_back(slide, brake, n), n * push - brake);
         }
         if body_inv_mass > zero {
             let share = w / (w + body_inv_mass);

@@ -34,29 +34,53 @@ impl<P: Point> Contacts<'_, P> {
     /// and, with self-contact, two parts of a rope within the thickness; for particle speeds
     /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
     /// surface's. `object` holds what is drawn at the frame's start: a collider that is not
-    /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps.
+    /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps. Also the
+    /// fastest a point can close on a collider it can reach (its speed and the collider's;
+    /// 0 when the thickness is 0).
     pub(crate) fn rate(
         &self,
         (speed, surface): (P::Scalar, bool),
         (object, dt): (Aabb<P>, P::Scalar),
-    ) -> P::Scalar {
-        if self.thickness <= P::Scalar::ZERO {
-            return P::Scalar::ZERO;
+    ) -> (P::Scalar, P::Scalar) {
+        let zero = P::Scalar::ZERO;
+        if self.thickness <= zero {
+            return (zero, zero);
         }
         let reach = self.point_speed(speed, surface);
-        let colliders = self.colliders.iter().fold(P::Scalar::ZERO, |rate, c| {
+        let (colliders, closing) = self.colliders.iter().fold((zero, zero), |most, c| {
             if !self.reachable(c, (object, reach), dt) {
-                return rate;
+                return most;
             }
+            let closing = reach + c.velocity().length();
             let allowed = self.thickness + c.depth();
-            rate.max((reach + c.velocity().length()) / allowed)
+            (most.0.max(closing / allowed), most.1.max(closing))
         });
         // Two parts of a rope can meet head on.
         if self.self_friction.is_some() {
-            colliders.max((reach + reach) / self.thickness)
+            (colliders.max((reach + reach) / self.thickness), closing)
         } else {
-            colliders
+            (colliders, closing)
         }
+    }
+
+    /// Whether the contacts may skip substeps: unless they run at every substep, with a
+    /// thickness of 0, with self-contact (a pile's stacked contacts, with a frame's weight on
+    /// them, take more rounds than they have), on a natural spline (each drawn point weighs
+    /// in every particle, so that a push anywhere moves it all, and a frame's pushes take
+    /// more than one pass) or with a body that has a mass (a two-way contact's pushes are
+    /// each substep's).
+    pub(crate) fn may_wait(&self) -> bool {
+        let natural = matches!(
+            self.touch,
+            Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline)
+        );
+        self.thickness > P::Scalar::ZERO
+            && !natural
+            && self.self_friction.is_none()
+            && !self
+                .colliders
+                .iter()
+                .any(|c| c.inv_mass() > P::Scalar::ZERO)
     }
 
     /// Whether `c` can touch within `dt` seconds what `object` holds, its points moving up

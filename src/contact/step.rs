@@ -1,6 +1,7 @@
 //! A mass-spring step that ends each substep with the contacts: the systems' side of
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
+use super::timing::{Timing, Waited};
 use super::{Contacts, Touch};
 use crate::curves::smooth::Smoothing;
 use crate::error::check_non_negative;
@@ -100,7 +101,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if self.sleeps_under(forces, near) {
             Reach::Asleep
         } else if contacts.can_touch(speed, object) {
-            Reach::Within(contacts.rate(speed, object), near)
+            let (rate, closing) = contacts.rate(speed, object);
+            let plan = Plan {
+                rate,
+                closing: contacts.may_wait().then_some(closing),
+                speed: top_speed,
+            };
+            Reach::Within(plan, near)
         } else {
             Reach::Apart(near)
         }
@@ -118,29 +125,64 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         match reach {
             Reach::Asleep => check_non_negative(dt, "dt").map(|dt| self.doze(dt)),
             Reach::Apart(near) | Reach::Within(_, near) => {
-                self.step_resolving(dt, forces, (None, near), |_, _, _| {})
+                self.step_resolving(dt, forces, (None, near), |_, _, _, _| {})
             }
         }
     }
 
-    /// The step of a frame within reach of `contacts` (`rate` substeps a second at least,
-    /// `near` as [`reach`](Self::reach) found them): each substep ends with `resolve` (the
-    /// contacts), reporting impulses when `contacts` asks for them.
+    /// The step of a frame within reach of `contacts` (`plan` and `near` as
+    /// [`reach`](Self::reach) found them): its substeps end with `resolve` (the contacts)
+    /// when they are [`due`](Contacts::due), at the step's end and before a point can close
+    /// on a collider by more than the thickness, or at every substep when they may not wait
+    /// ([`may_wait`](Contacts::may_wait)); reporting impulses when `contacts` asks for them.
+    /// When they may wait, costs at a substep's end a pass over the velocities when they are
+    /// not due, and a copy of the positions when they are (what friction takes back after
+    /// waited substeps is what the particles slid since).
     pub(crate) fn step_within<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
-        (rate, near): (P::Scalar, Option<u64>),
-        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+        (plan, near): (Plan<P::Scalar>, Option<u64>),
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
+        // Where the particles were when the contacts last ran, when that was within this
+        // frame (at its start, the step's own copy serves).
+        let mut since: Option<Sh::PerParticle<P>> = None;
+        let mut waited = Waited::default();
         let resolve = |state: &mut State<P, Sh>,
                        w: &Sh::PerParticle<P::Scalar>,
-                       times: (P::Scalar, P::Scalar)| {
-            contacts.advance_bodies(times.0);
-            resolve(state, w, times)
+                       (h, lag): (P::Scalar, P::Scalar),
+                       start: &Sh::PerParticle<P>| {
+            let slid: Sh::PerParticle<P>;
+            let mut timing = Timing::substep((h, lag));
+            match plan.closing {
+                None => contacts.advance_bodies(h),
+                Some(closing) => {
+                    // A call with no time passing is a round after a substep's contacts.
+                    if h > P::Scalar::ZERO {
+                        waited.time += h;
+                        waited.count = waited.count.saturating_add(1);
+                        let v = Sh::flat(&state.vel);
+                        if !contacts.due((h, lag), &waited, (closing, plan.speed), v) {
+                            return;
+                        }
+                    }
+                    contacts.advance_bodies(waited.time);
+                    if waited.count > 1 {
+                        slid = moved::<P, Sh>(&state.pos, since.as_ref().unwrap_or(start));
+                        timing = timing.waited(waited.count, Sh::flat(&slid));
+                    }
+                    waited = Waited::default();
+                }
+            }
+            resolve(state, w, timing);
+            if plan.closing.is_some() && lag > P::Scalar::ZERO {
+                since = Some(state.pos);
+            }
         };
-        contacts.finish_report(self.step_resolving(dt, forces, (Some(rate), near), resolve))
+        let floor = (Some(plan.rate), near);
+        contacts.finish_report(self.step_resolving(dt, forces, floor, resolve))
     }
 
     /// A step that ends each substep with `resolve` (the contacts of `contacts`), with the
@@ -152,15 +194,27 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         contacts: &Contacts<'_, P>,
         surface: bool,
-        resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+        resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         match self.reach(dt, &forces, contacts, surface) {
-            Reach::Within(rate, near) => {
-                self.step_within(dt, forces, contacts, (rate, near), resolve)
+            Reach::Within(plan, near) => {
+                self.step_within(dt, forces, contacts, (plan, near), resolve)
             }
             apart => self.step_apart(dt, forces, apart),
         }
     }
+}
+
+/// How far each particle moved from `before` to `now`.
+fn moved<P: Point, Sh: Shape>(
+    now: &Sh::PerParticle<P>,
+    before: &Sh::PerParticle<P>,
+) -> Sh::PerParticle<P> {
+    let mut moved = *now;
+    for (m, x0) in Sh::flat_mut(&mut moved).iter_mut().zip(Sh::flat(before)) {
+        *m -= *x0;
+    }
+    moved
 }
 
 /// What a frame's contacts ask of its step ([`MassSpring::reach`]).
@@ -170,7 +224,20 @@ pub(crate) enum Reach<S> {
     Asleep,
     /// Nothing within reach: a plain step (the key of what is near, for sleep).
     Apart(Option<u64>),
-    /// Something within reach: contacts after every substep, at least this many substeps a
-    /// second (the key of what is near, for sleep).
-    Within(S, Option<u64>),
+    /// Something within reach: contacts as the plan asks (the key of what is near, for
+    /// sleep).
+    Within(Plan<S>, Option<u64>),
+}
+
+/// How often a frame within reach resolves its contacts ([`MassSpring::reach`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Plan<S> {
+    /// Substeps a second at least ([`Contacts::rate`]).
+    rate: S,
+    /// The fastest a point can close on a collider it can reach (m/s), when the contacts
+    /// may wait ([`Contacts::may_wait`]; `None`: they run at every substep).
+    closing: Option<S>,
+    /// The particles' top speed the rate holds for (m/s), gravity's gain over the frame
+    /// included.
+    speed: S,
 }

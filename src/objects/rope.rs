@@ -3,7 +3,7 @@
 use crate::error::{invalid, out_of_range};
 use core::ops::{Deref, DerefMut};
 
-use crate::contact::{Contacts, PairMemory, Reach, Touch};
+use crate::contact::{Contacts, PairMemory, Plan, Reach, Touch};
 use crate::curves::smooth::{self, Smoothing};
 use crate::error::{check_points, check_positive};
 use crate::geometry::catenary::Catenary;
@@ -246,10 +246,10 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         match self.system.reach(dt, &forces, contacts, false) {
-            Reach::Within(rate, near) if contacts.remembers() => {
-                self.step_remembering(dt, forces, contacts, (rate, near))
+            Reach::Within(plan, near) if contacts.remembers() => {
+                self.step_remembering(dt, forces, contacts, (plan, near))
             }
-            Reach::Within(rate, near) => self.step_curve(dt, forces, contacts, (rate, near), None),
+            Reach::Within(plan, near) => self.step_curve(dt, forces, contacts, (plan, near), None),
             apart => self.system.step_apart(dt, forces, apart),
         }
     }
@@ -273,7 +273,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
-        reach: (P::Scalar, Option<u64>),
+        reach: (Plan<P::Scalar>, Option<u64>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let mut memory = PairMemory::new();
         self.step_curve(dt, forces, contacts, reach, Some(&mut memory))
@@ -288,7 +288,7 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
-        reach: (P::Scalar, Option<u64>),
+        reach: (Plan<P::Scalar>, Option<u64>),
         mut memory: Option<&mut PairMemory<P, N>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let closed = matches!(contacts.touch(), Touch::DrawnLoop(_));

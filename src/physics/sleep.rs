@@ -7,7 +7,7 @@ use crate::physics::integrator::Integrator;
 use crate::physics::shape::Shape;
 use crate::physics::spring::Topology;
 use crate::physics::system::StepInfo;
-use crate::{Error, MassSpring, Point, Scalar};
+use crate::{Aabb, Error, MassSpring, Point, Scalar};
 
 /// When a [`MassSpring`] (a rope, a cloth, a torus) may fall asleep: after `frames` steps in
 /// a row with every particle slower than `speed`, under force fields and colliders that did
@@ -56,7 +56,10 @@ use crate::{Error, MassSpring, Point, Scalar};
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Sleep<S> {
-    /// Speed (units per second, finite, `>= 0`) that every particle stays below.
+    /// Speed (units per second, finite, `>= 0`) that every particle stays below: by its
+    /// velocity, or by how far it moved over the step (along each axis no more than half
+    /// what `speed` covers in the step), whichever holds (a particle that a contact holds
+    /// where it was is still, whatever velocity the contact's last push left it).
     pub speed: S,
     /// Steps in a row (`>= 1`) that it does so before the object falls asleep.
     pub frames: u16,
@@ -181,11 +184,12 @@ impl<S: Scalar> Rest<S> {
         false
     }
 
-    /// After a kept step keyed `key` whose fastest particle went `fastest_squared` (a
-    /// squared speed): counts it still or not, and falls asleep after enough still steps.
-    pub(crate) fn count(&mut self, key: Option<u64>, fastest_squared: S) {
+    /// After a kept step keyed `key` (`None`: it cannot count as still), whose particles
+    /// were `still` or not ([`count_rest`](MassSpring::count_rest)): counts it still or
+    /// not, and falls asleep after enough still steps.
+    pub(crate) fn count(&mut self, key: Option<u64>, still: impl FnOnce(S) -> bool) {
         let Some(sleep) = self.setting() else { return };
-        let still = key.is_some() && fastest_squared <= sleep.speed * sleep.speed;
+        let still = key.is_some() && still(sleep.speed);
         self.still = if still {
             self.still.saturating_add(1)
         } else {
@@ -264,10 +268,40 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         }
     }
 
-    /// The square of the fastest particle's speed (pinned ones are still).
-    pub(crate) fn fastest_squared(&self) -> P::Scalar {
-        self.velocities()
-            .iter()
-            .fold(P::Scalar::ZERO, |most, v| most.max(v.dot(*v)))
+    /// Where the particles are before a step, when sleep is on (to judge them still after
+    /// it: [`count_rest`](Self::count_rest)).
+    pub(crate) fn rest_start(&self) -> Option<Sh::PerParticle<P>> {
+        if self.rest.is_on() {
+            Some(self.state.pos)
+        } else {
+            None
+        }
+    }
+
+    /// After a kept step of `dt` from positions `start` ([`rest_start`](Self::rest_start)),
+    /// keyed `key` (`None`: it cannot count as still), counts it still or not: still when
+    /// every particle is slower than the sleep's speed, or moved along each axis no more
+    /// than half what that speed covers in the step (so less than it along any direction;
+    /// pinned ones are still). A particle that a contact holds where it was is still,
+    /// whatever velocity the contact's last push left it. No root, no division.
+    pub(crate) fn count_rest(
+        &mut self,
+        start: Option<Sh::PerParticle<P>>,
+        key: Option<u64>,
+        dt: P::Scalar,
+    ) {
+        let Some(start) = start else { return };
+        let (v, x, x0) = (
+            Sh::flat(&self.state.vel),
+            Sh::flat(&self.state.pos),
+            Sh::flat(&start),
+        );
+        let still = |speed: P::Scalar| {
+            let (fast, near) = (speed * speed, speed * dt * P::Scalar::ratio(1, 2));
+            let mut particles = v.iter().zip(x.iter().zip(x0));
+            particles
+                .all(|(v, (x, x0))| v.dot(*v) <= fast || Aabb::point(*x0).grown(near).contains(*x))
+        };
+        self.rest.count(key, still);
     }
 }

@@ -7,7 +7,7 @@ use crate::error::{
 };
 use crate::physics::body::Body;
 use crate::physics::force::ForceField;
-use crate::physics::integrator::{Integrator, Model, Solved, State, SymplecticEuler};
+use crate::physics::integrator::{Integrator, Model, Solved, State, SubstepEnd, SymplecticEuler};
 use crate::physics::shape::Shape;
 use crate::physics::sleep::Rest;
 use crate::physics::spring::{Spread, Topology, check_rest};
@@ -595,7 +595,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if self.sleeps_under(&forces, Some(0)) && dt >= P::Scalar::ZERO && dt.is_finite() {
             return Ok(self.doze(dt));
         }
-        self.step_resolving(dt, forces, (None, Some(0)), |_, _, _| {})
+        self.step_resolving(dt, forces, (None, Some(0)), |_, _, _, _| {})
     }
 
     /// The particles' box, and the fastest a free particle can go this frame: its speed now
@@ -634,7 +634,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         dt: P::Scalar,
         mut forces: F,
         (floor, near): (Option<P::Scalar>, Option<u64>),
-        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+        mut resolve: impl SubstepEnd<P, Sh>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let key = self.rest.key(&forces, near);
         if self.rest.sleeps_through(key) {
@@ -642,12 +642,9 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return Ok(self.doze(dt));
         }
         let (n, h, slow_motion) = self.plan_at_least(dt, floor.unwrap_or(P::Scalar::ZERO))?;
+        let start = self.rest_start();
         let solved = self.substeps_or_undo(n, h, &mut forces, floor.is_some(), &mut resolve)?;
-        if self.rest.is_on() {
-            let quiet = !slow_motion && solved.fits;
-            self.rest
-                .count(key.filter(|_| quiet), self.fastest_squared());
-        }
+        self.count_rest(start, key.filter(|_| !slow_motion && solved.fits), dt);
         Ok(StepInfo {
             substeps: n,
             simulated: if slow_motion {
@@ -679,7 +676,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let n = u16::from(check_non_negative(h, "h")? > P::Scalar::ZERO);
         self.rest.wake();
-        let solved = self.substeps_or_undo(n, h, &mut forces, false, &mut |_, _, _| {})?;
+        let solved = self.substeps_or_undo(n, h, &mut forces, false, &mut |_, _, _, _| {})?;
         Ok(StepInfo {
             substeps: n,
             simulated: h,
@@ -708,7 +705,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         h: P::Scalar,
         forces: &mut F,
         touching: bool,
-        resolve: &mut impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar)),
+        resolve: &mut impl SubstepEnd<P, Sh>,
     ) -> Result<Solved<P::Scalar>, Error> {
         let saved = (self.state, self.time);
         let mut solved = Solved::plain(true);
@@ -732,7 +729,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                 &mut self.memory,
                 (h, lag),
                 forces,
-                &mut |state, times| resolve(state, inv_mass, times),
+                &mut |state, times| resolve(state, inv_mass, times, &saved.0.pos),
             ));
             settled = solved.converged;
             self.time += h;

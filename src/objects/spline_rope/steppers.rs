@@ -522,6 +522,7 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 (fastest + self.settings.gravity.length() * dt, false),
                 (object, dt),
             )
+            .0
         });
         // `Q16`'s one linearized Newton step keeps its precision while the rate times the
         // step is at most 8 (see `within_precision`): past it, substeps (never slow motion).
@@ -618,7 +619,8 @@ impl<P: Point, const K: usize, I: SplineStepper> SplineRope<P, K, I> {
                 let (pos, vel) = (&mut self.pos, &mut self.vel);
                 contacts.advance_bodies(h);
                 let parts = (pos, vel, &self.inv_load);
-                contacts.resolve_spans(parts, (h, lag), &mut curve, memory.as_mut());
+                let timing = crate::contact::Timing::substep((h, lag));
+                contacts.resolve_spans(parts, timing, &mut curve, memory.as_mut());
             }
         }
         let bounds = self.settings.bounds;

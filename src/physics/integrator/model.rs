@@ -5,6 +5,24 @@ use crate::physics::shape::Shape;
 use crate::physics::spring::{Material, Topology};
 use crate::{Point, Scalar};
 
+/// What ends a step's substeps (its contacts): called with the state, the inverse masses,
+/// the substep's length and the time left in the frame (`(h, lag)`), and where the
+/// particles were at the frame's start.
+pub(crate) trait SubstepEnd<P: Point, Sh: Shape>:
+    FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, (P::Scalar, P::Scalar), &Sh::PerParticle<P>)
+{
+}
+
+impl<P: Point, Sh: Shape, F> SubstepEnd<P, Sh> for F where
+    F: FnMut(
+        &mut State<P, Sh>,
+        &Sh::PerParticle<P::Scalar>,
+        (P::Scalar, P::Scalar),
+        &Sh::PerParticle<P>,
+    )
+{
+}
+
 /// Positions and velocities of every particle: what an integrator advances.
 pub struct State<P: Point, Sh: Shape> {
     pub(crate) pos: Sh::PerParticle<P>,
