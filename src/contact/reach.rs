@@ -63,12 +63,12 @@ impl<P: Point> Contacts<'_, P> {
         }
     }
 
-    /// Whether the contacts may skip substeps: unless they run at every substep, with a
-    /// thickness of 0, with self-contact (a pile's stacked contacts, with a frame's weight on
-    /// them, take more rounds than they have), on a natural spline (each drawn point weighs
-    /// in every particle, so that a push anywhere moves it all, and a frame's pushes take
-    /// more than one pass) or with a body that has a mass (a two-way contact's pushes are
-    /// each substep's).
+    /// Whether the contacts may skip substeps ([`due`](Self::due)). They run at every
+    /// substep with a thickness of 0, with self-contact (a pile's stacked contacts, with a
+    /// frame's weight on them, take more rounds than they have), on a natural spline (each
+    /// drawn point weighs in every particle, so that a push anywhere moves it all, and a
+    /// frame's pushes take more than one pass) and with a body that has a mass (a two-way
+    /// contact's pushes are each substep's).
     pub(crate) fn may_wait(&self) -> bool {
         let natural = matches!(
             self.touch,

@@ -1,7 +1,8 @@
 //! When a frame's contacts run, and what friction takes back of the sliding since they last
 //! ran. A frame within reach resolves its contacts before a point can close on a collider
-//! by more than the thickness ([`Contacts::due`]) and at the step's end: a rope that the springs split into 8 substeps
-//! but that moves slowly meets its colliders once a frame, not 8 times.
+//! by more than the thickness ([`Contacts::due`]) and at the step's end: a rope that the
+//! springs split into 8 substeps but that moves slowly meets its colliders once a frame,
+//! not 8 times.
 
 use super::Contacts;
 use super::drawn::point_of;
