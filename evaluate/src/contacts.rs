@@ -243,7 +243,8 @@ pub fn run(run: &mut Run) {
         floor_lying <= 1.0,
         "the floor's contacts run once a frame (a rope at rest moves less than its thickness \
          in a frame), but each span on it then takes its deepest point in closed form, its \
-         particle weights and, after its push, a redraw of the 7 spans its particles weigh in",
+         particle weights and a push, and the 7 spans its particles weigh in are drawn again \
+         (each once, when next read)",
     );
     for (what, target, state) in [
         ("settled in a pile on a floor (5 drops)", 10.0, &costs.piled),
@@ -268,11 +269,13 @@ pub fn run(run: &mut Run) {
             )
             .replace(" (fastest NaN×;", " (mean of its frames;"),
             state.both <= target * state.step,
-            "every substep meets each pair of spans whose boxes meet (searched by exact chord \
-             distances then Newton steps, or followed by Newton steps from where the step found \
+            "the floor's contacts run at every substep, self-contact once a span moved an \
+             eighth of the diameter (and in the last), in rounds with the floor until no \
+             overlap is over 1% of the diameter (a pile is contacts stacked on contacts); each \
+             round meets each pair of spans whose boxes meet (searched by exact chord \
+             distances then Newton steps, followed by Newton steps from where the step found \
              it, or held apart by how little its spans moved) and redraws the spans each push \
-             moved, in rounds until no overlap is over 1% of the diameter (a pile is contacts \
-             stacked on contacts)",
+             moved",
         );
     }
     // The player's rope of `examples/mcu_wrap.rs` wrapping its box, under `DirectChain`.

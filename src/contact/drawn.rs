@@ -28,10 +28,22 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn cubic(&self, span: usize) -> Option<[P; 4]>;
     /// The control points' weights in that point.
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]);
+    /// The same weights when only 4 control points can weigh in (an open cubic spline's or
+    /// polyline's): the first of them and their weights, with no pass over all `K`.
+    fn window(&self, _span: usize, _t: P::Scalar) -> Option<(usize, [P::Scalar; 4])> {
+        None
+    }
     /// Draws again the spans that the control points `moved` (the first and the last,
     /// inclusive) weigh in, after they moved: the spans drawn again, `(first, count)`
     /// counted round a loop, or `None` when the moved points left the range.
     fn rebuild(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)>;
+    /// [`rebuild`](Self::rebuild) put off: the spans that the moved control points weigh
+    /// in, `(first, count)` round a loop, left for
+    /// [`redraw_spans`](Self::redraw_spans) when next read; `(0, 0)` when they weigh in
+    /// every span, which this draws again at once; `None` when they left the range.
+    fn outdated(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)>;
+    /// Draws spans `first..first + count` (round a loop) again from `pos`.
+    fn redraw_spans(&mut self, pos: &[P; K], spans: (usize, usize));
     /// Whether the last span joins the first (a loop).
     fn is_closed(&self) -> bool {
         false
@@ -70,6 +82,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
     fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
         Smoothed::weights(self, span, t, weights);
     }
+    fn window(&self, span: usize, t: P::Scalar) -> Option<(usize, [P::Scalar; 4])> {
+        Smoothed::window(self, span, t)
+    }
     fn is_closed(&self) -> bool {
         Smoothed::span_count(self) == K
     }
@@ -78,6 +93,12 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
     }
     fn rebuild(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)> {
         self.redraw(pos, moved).ok()
+    }
+    fn outdated(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)> {
+        Some(Smoothed::outdated(self, pos, moved).ok()?.unwrap_or((0, 0)))
+    }
+    fn redraw_spans(&mut self, pos: &[P; K], spans: (usize, usize)) {
+        Smoothed::redraw_spans(self, pos, spans);
     }
 }
 
@@ -98,9 +119,15 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
         span: usize,
         t: S,
     ) -> Self {
+        let mut w = Self::none();
+        if let Some((first, near)) = curve.window(span, t) {
+            for (i, &x) in near.iter().enumerate() {
+                w.push(first + i, x);
+            }
+            return w;
+        }
         let mut dense = [S::ZERO; K];
         curve.weights(span, t, &mut dense);
-        let mut w = Self::none();
         for (i, &x) in dense.iter().enumerate() {
             w.push(i, x);
         }

@@ -159,6 +159,7 @@ impl<P: Point> Contacts<'_, P> {
             } else {
                 memory.moved_to(pair, places);
             }
+            memory.clear_by(pair, dist - gap);
         }
         // Two spans that cross exactly give no direction to part them: the next substep will.
         if !(dist < gap && dist > gap * P::Scalar::ratio(1, 1024)) {

@@ -12,27 +12,33 @@ use crate::{Point, Scalar};
 /// other about one or two places, and at least `e` apart everywhere else, touch nowhere else
 /// while their moves add up to less than `e` less the gap, and come nearest about those
 /// places while they add up to less than half of `e` less their distance: Newton steps from
-/// those places find their nearest points then. Each span's moves are added up whenever a
+/// those places find their nearest points then; measured there `c` farther apart than the
+/// gap, they stay so while their moves add up to less than `c`, and take no Newton step
+/// meanwhile. Each span's moves are added up whenever a
 /// pair reads it (the largest of its four control points' moves since it was last read),
 /// whatever moved it: the integrator, a collider, a push. Lives on the stack for one step:
-/// `K` spans' control points and [`WAYS`] pairs a span.
+/// `K` spans' control points and [`WAYS`] pairs a span, shared: a pair `(a, b)` is kept in
+/// one of the `2·WAYS` places of rows `(a + b) mod K` and the next, so that the few spans a
+/// pile heaps near many others do not each fill a row of their own.
 pub(crate) struct PairMemory<P: Point, const K: usize> {
     /// Each span's control points when it was last read (`None`: not yet).
     anchors: [Option<[P; 4]>; K],
     /// How far each span's control points may have moved since the step began, at most.
     travel: [P::Scalar; K],
-    /// For span `a`, pairs with a later span `b`: what holds while `travel[a] + travel[b]`
-    /// stays under `until`.
+    /// Pairs of spans `a < b`, each in row `(a + b) mod K` or the next: what holds while
+    /// `travel[a] + travel[b]` stays under `until`.
     pairs: [[Option<Pair<P::Scalar>>; WAYS]; K],
     /// Each span's `travel` when self-contact last ran.
     checked: [P::Scalar; K],
 }
 
-/// What holds for a pair of spans while they have not moved `until`.
+/// What holds for a pair of spans while they have not moved `until`, and that they are
+/// farther apart than the gap while they have not moved `clear`.
 #[derive(Clone, Copy)]
 struct Pair<S> {
-    other: u16,
+    spans: (u16, u16),
     until: S,
+    clear: S,
     /// The parameters of their nearest points, and of a second place where they come near,
     /// last found (`None`: apart).
     near: Option<Places<S>>,
@@ -53,7 +59,7 @@ pub(crate) enum Recall<S> {
     Near(Places<S>),
 }
 
-/// Pairs remembered for each span (with the spans after it).
+/// Pairs remembered a span, on average.
 const WAYS: usize = 4;
 
 impl<P: Point, const K: usize> PairMemory<P, K> {
@@ -128,10 +134,11 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         };
         self.read(a, ca);
         self.read(b, cb);
-        let (Some(moved), Some(k)) = (self.moved((a, b)), self.find((a, b))) else {
+        let (Some(moved), Some((row, k))) = (self.moved((a, b)), self.find((a, b))) else {
             return Recall::Unknown;
         };
-        match self.pairs[a][k] {
+        match self.pairs[row][k] {
+            Some(p) if moved < p.clear => Recall::Apart,
             Some(p) if moved < p.until => p.near.map_or(Recall::Apart, Recall::Near),
             _ => Recall::Unknown,
         }
@@ -143,11 +150,24 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         Some(*self.travel.get(a)? + *self.travel.get(b)?)
     }
 
-    /// Where pair `(a, b)` is kept in span `a`'s row, if it is.
-    fn find(&self, (a, b): (usize, usize)) -> Option<usize> {
-        let row = self.pairs.get(a)?;
-        row.iter()
-            .position(|p| p.is_some_and(|p| usize::from(p.other) == b))
+    /// Where pair `(a, b)` is kept (its row and place), if it is.
+    fn find(&self, (a, b): (usize, usize)) -> Option<(usize, usize)> {
+        if a >= K || b >= K {
+            return None;
+        }
+        let key = (u16::try_from(a).ok()?, u16::try_from(b).ok()?);
+        self.rows((a, b)).into_iter().find_map(|row| {
+            let k = self.pairs[row]
+                .iter()
+                .position(|p| p.is_some_and(|p| p.spans == key))?;
+            Some((row, k))
+        })
+    }
+
+    /// The two rows pair `(a, b)` may be kept in (both spans below `K`).
+    fn rows(&self, (a, b): (usize, usize)) -> [usize; 2] {
+        let row = (a % K + b % K) % K;
+        [row, (row + 1) % K]
     }
 
     /// Remembers of spans `a < b` (both just read) that, `margin` over the gap they must
@@ -161,37 +181,59 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         near: Option<Places<P::Scalar>>,
     ) {
         let (slot, moved) = (self.find((a, b)), self.moved((a, b)));
-        let (Some(row), Ok(other), Some(moved)) = (self.pairs.get_mut(a), u16::try_from(b), moved)
+        let (Ok(first), Ok(second), Some(moved)) = (u16::try_from(a), u16::try_from(b), moved)
         else {
             return;
         };
         if margin <= P::Scalar::ZERO {
-            if let Some(k) = slot {
-                row[k] = None;
+            if let Some((row, k)) = slot {
+                self.pairs[row][k] = None;
             }
             return;
         }
         let until = moved + margin;
-        let soonest = |k: usize| row[k].map_or(P::Scalar::ZERO, |p| p.until);
-        let k = slot
-            .or_else(|| row.iter().position(Option::is_none))
-            .unwrap_or_else(|| {
-                (1..WAYS).fold(
-                    0,
-                    |best, k| if soonest(k) < soonest(best) { k } else { best },
-                )
-            });
-        row[k] = Some(Pair { other, until, near });
+        let rows = self.rows((a, b));
+        let places = || {
+            rows.into_iter()
+                .flat_map(|row| (0..WAYS).map(move |k| (row, k)))
+        };
+        let soonest = |(row, k): (usize, usize)| {
+            self.pairs[row][k].map_or(P::Scalar::ZERO, |p: Pair<P::Scalar>| p.until)
+        };
+        let free = places().find(|&(row, k)| self.pairs[row][k].is_none());
+        let (row, k) = slot.or(free).unwrap_or_else(|| {
+            places().fold((rows[0], 0), |best, p| {
+                if soonest(p) < soonest(best) { p } else { best }
+            })
+        });
+        // Found apart, they stay so while their moves add up to less than the margin; found
+        // near, [`clear_by`](Self::clear_by) says how long.
+        self.pairs[row][k] = Some(Pair {
+            spans: (first, second),
+            until,
+            clear: if near.is_some() { moved } else { until },
+            near,
+        });
     }
 
     /// Keeps the nearest points of spans `a < b`, found again from what [`recall`] gave.
     ///
     /// [`recall`]: Self::recall
     pub(crate) fn moved_to(&mut self, (a, b): (usize, usize), near: Places<P::Scalar>) {
-        if let Some(k) = self.find((a, b))
-            && let Some(Some(p)) = self.pairs.get_mut(a).map(|row| &mut row[k])
+        if let Some((row, k)) = self.find((a, b))
+            && let Some(p) = &mut self.pairs[row][k]
         {
             p.near = Some(near);
+        }
+    }
+
+    /// Notes that spans `a < b`, just read, are `clearance` farther apart than the gap where
+    /// they come nearest: nothing to search while their moves add up to less.
+    pub(crate) fn clear_by(&mut self, (a, b): (usize, usize), clearance: P::Scalar) {
+        if let (Some(moved), Some((row, k))) = (self.moved((a, b)), self.find((a, b)))
+            && let Some(p) = &mut self.pairs[row][k]
+        {
+            p.clear = moved + clearance;
         }
     }
 }
@@ -221,27 +263,43 @@ mod tests {
         Some(core::array::from_fn(|k| Vec2::new(x + k as f64, 0.0)))
     }
 
-    /// A pair held apart stays so until its spans' moves add up to its margin; a span's
-    /// fifth pair takes the place of the one that expires first; a margin that is not
-    /// positive forgets the pair; a span that is no cubic is never known.
+    /// A pair held apart stays so until its spans' moves add up to its margin; a pair near
+    /// but clear of the gap is held apart until they add up to its clearance, then
+    /// followed; the ninth pair kept in the same two rows takes the place of the one that
+    /// expires first; a margin that is not positive forgets the pair; a span that is no
+    /// cubic is never known.
     #[test]
     fn pairs_are_held_until_their_spans_have_moved_their_margin() {
-        let mut memory = PairMemory::<Vec2<f64>, 8>::new();
-        for b in 2..7 {
-            let _ = memory.recall((0, b), (span(0.0), span(b as f64)));
-            memory.remember((0, b), 0.1 * b as f64, None);
+        let mut memory = PairMemory::<Vec2<f64>, 64>::new();
+        // Pairs (a, 40 - a): all kept in rows 40 and 41.
+        let pair = |a: usize| (a, 40 - a);
+        let recall = |memory: &mut PairMemory<Vec2<f64>, 64>, a: usize, x: f64| {
+            let (a, b) = pair(a);
+            memory.recall((a, b), (span(x), span(b as f64)))
+        };
+        for a in 0..9 {
+            let _ = recall(&mut memory, a, a as f64);
+            memory.remember(pair(a), 0.1 * (a + 1) as f64, None);
         }
-        // The pair (0, 2), which expired first, gave its place to (0, 6).
-        assert!(memory.recall((0, 2), (span(0.0), span(2.0))) == Recall::Unknown);
-        for b in 3..7 {
-            assert!(memory.recall((0, b), (span(0.0), span(b as f64))) == Recall::Apart);
+        // The pair (0, 40), which expired first, gave its place to (8, 32).
+        assert!(recall(&mut memory, 0, 0.0) == Recall::Unknown);
+        for a in 1..9 {
+            assert!(recall(&mut memory, a, a as f64) == Recall::Apart);
         }
-        // Span 0 moves 0.35 in two moves: the pairs with margins of 0.4 and over stay apart.
-        let _ = memory.recall((0, 3), (span(0.2), span(3.0)));
-        assert!(memory.recall((0, 3), (span(0.35), span(3.0))) == Recall::Unknown);
-        assert!(memory.recall((0, 4), (span(0.35), span(4.0))) == Recall::Apart);
-        memory.remember((0, 4), 0.0, None);
-        assert!(memory.recall((0, 4), (span(0.35), span(4.0))) == Recall::Unknown);
-        assert!(memory.recall((0, 5), (None, span(5.0))) == Recall::Unknown);
+        // Span 2 moves 0.35 in two moves: the pairs with margins of 0.4 and over stay apart.
+        let _ = recall(&mut memory, 2, 2.2);
+        assert!(recall(&mut memory, 2, 2.35) == Recall::Unknown);
+        assert!(recall(&mut memory, 3, 3.35) == Recall::Apart);
+        memory.remember(pair(3), 0.0, None);
+        assert!(recall(&mut memory, 3, 3.35) == Recall::Unknown);
+        assert!(memory.recall((4, 36), (None, span(36.0))) == Recall::Unknown);
+        // Near about a place, 0.2 clear of the gap, valid for moves of 0.5.
+        let places = ((0.5, 0.5), None);
+        let _ = recall(&mut memory, 5, 5.0);
+        memory.remember(pair(5), 0.5, Some(places));
+        memory.clear_by(pair(5), 0.2);
+        assert!(recall(&mut memory, 5, 5.15) == Recall::Apart);
+        assert!(recall(&mut memory, 5, 5.25) == Recall::Near(places));
+        assert!(recall(&mut memory, 5, 5.55) == Recall::Unknown);
     }
 }

@@ -48,7 +48,7 @@
 //! than that judgement allowed for, and at every substep with a thickness of 0, with
 //! self-contact, on a natural spline or with a collider that has a mass. A 16-particle
 //! rope lying on a floor, its springs asking for 7 substeps, meets the floor once a frame:
-//! the floor adds 2.01 times its bare step, where it added 12.8 times when the contacts ran
+//! the floor adds 2.10 times its bare step, where it added 12.8 times when the contacts ran
 //! at every substep (`docs/summary.md`, targets). After waited substeps, friction that
 //! holds a point still takes back all it slid since the contacts last ran (its particles'
 //! moves, weighted as in the point), so that a rope on a slope stays put as it did; kinetic
@@ -68,7 +68,7 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider, is 9.4% of an 8-particle rope's bare step (`docs/summary.md`,
+//! box test per collider, is 7.1% of an 8-particle rope's bare step (`docs/summary.md`,
 //! targets).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
@@ -121,6 +121,37 @@ pub(crate) use timing::Timing;
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
+
+/// The share of its inverse mass that a particle a collider pushed moves by in
+/// self-contact, in the same substep's rounds: a rope resting on a floor is held by it, so a
+/// span landing on it moves it less (mass scaling, as in shock propagation). In the first
+/// settled pile of `a_rope_dropped_in_a_pile_never_passes_through_itself` (f32), each round
+/// leaves about 0.62 of the deepest overlap, where with the full inverse mass it left 0.73
+/// (the floor pushed back what self-contact pushed into it): 9 rounds a frame, not 14.
+const RESTING_SHARE: (u32, u32) = (3, 10);
+
+/// The particles a collider pushed in a substep's rounds so far.
+struct Resting<const K: usize>([bool; K]);
+
+impl<const K: usize> Resting<K> {
+    /// Adds the particles that moved from `before` to `now` (the colliders' round).
+    fn note<P: Point>(&mut self, before: &[P; K], now: &[P; K]) -> &Self {
+        for ((rests, a), b) in self.0.iter_mut().zip(before).zip(now) {
+            *rests |= a != b;
+        }
+        self
+    }
+
+    /// The inverse masses self-contact moves the particles by: [`RESTING_SHARE`] of
+    /// `inv_mass` for those resting on a collider.
+    fn masses<S: Scalar>(&self, inv_mass: &[S; K]) -> [S; K] {
+        let share = S::ratio(RESTING_SHARE.0, RESTING_SHARE.1);
+        core::array::from_fn(|i| match self.0[i] {
+            true => inv_mass[i] * share,
+            false => inv_mass[i],
+        })
+    }
+}
 
 /// Where contacts are tested.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -221,9 +252,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// points add up to less than that margin, and a pair found near each other in one or
     /// two places (and by the chords farther everywhere else) is followed from those places
     /// by Newton steps alone, for at most a diameter of such moves, and while nowhere else
-    /// could come nearer. A pile is a stack of such contacts, so colliders and
-    /// self-contact take up to 12 rounds a substep, until no overlap is over 1% of the
-    /// diameter. The colliders have the last word: when the last round pushed two spans
+    /// could come nearer; found clear of the diameter by `c` where they come nearest, it
+    /// takes no Newton step while those moves add up to less than `c`. A pile is a stack of
+    /// such contacts, so colliders and self-contact take up to 12 rounds a substep, until no
+    /// overlap is over 1% of the diameter; a particle a collider pushed in a substep's
+    /// rounds moves by 3/10 of its inverse mass in self-contact (the floor holds what rests
+    /// on it), so the rounds do not undo in one what the floor pushed back in the last. The
+    /// colliders have the last word: when the last round pushed two spans
     /// apart, the colliders are resolved once more, so that a floor is never passed (two
     /// spans may then stay within the rounds' tolerance). A step with self-contact takes
     /// substeps for twice the particles' top speed (two parts of the rope can meet head on).
@@ -231,16 +266,16 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
     /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
-    /// spans closer than the diameter less 2% over 10 s (0.9% to 1.2% less at the closest:
+    /// spans closer than the diameter less 2% over 10 s (0.7% to 1.1% less at the closest:
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 105 times the rope's bare step (0.16 ms a frame on the development machine), on
-    /// average 95 times while it falls into the pile and 122 times while it is whipped
-    /// round by its held end, 16 times lying straight on the floor, and 18 times for a
+    /// cost 59 times the rope's bare step (65 µs a frame on the development machine), on
+    /// average 62 times while it falls into the pile and 154 times while it is whipped
+    /// round by its held end, 16 times lying straight on the floor, and 20 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
-    /// particles few. Section (l) gives these for every integrator (settled in the pile 9 to
-    /// 120 times its bare step, still in the spiral 3.8 to 18.0 times: the dearer the
+    /// particles few. Section (l) gives these for every integrator (settled in the pile 10
+    /// to 49 times its bare step, still in the spiral 4.0 to 18.8 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
@@ -498,10 +533,13 @@ impl<'a, P: Point> Contacts<'a, P> {
             } else {
                 // The particles out of the colliders, the segments off each other; the
                 // colliders have the last word.
+                let mut resting = Resting([false; K]);
                 let last = self.rounds(|| {
+                    let before = *pos;
                     self.resolve_particles(pos, vel, w, timing);
                     drawn.rebuild(pos, (0, K - 1))?;
-                    self.resolve_self((&mut *pos, &mut *vel, w), timing, drawn, None)
+                    let moved_by = resting.note(&before, pos).masses(w);
+                    self.resolve_self((&mut *pos, &mut *vel, &moved_by), timing, drawn, None)
                 });
                 if last {
                     self.resolve_particles(pos, vel, w, timing);
@@ -570,22 +608,25 @@ impl<'a, P: Point> Contacts<'a, P> {
         );
         let due = |m: &mut PairMemory<P, K>| m.due(curve, gap, ending);
         if self.self_friction.is_none() || !memory.as_deref_mut().is_none_or(due) {
-            self.resolve_colliders((pos, vel, inv_mass), timing, curve);
+            self.resolve_colliders((pos, vel, inv_mass), timing, curve, false);
             return;
         }
+        let mut resting = Resting([false; K]);
         let last = self.rounds(|| {
+            let before = *pos;
             let parts = (&mut *pos, &mut *vel, inv_mass);
-            if !self.resolve_colliders(parts, timing, curve) {
+            if !self.resolve_colliders(parts, timing, curve, true) {
                 return None;
             }
+            let moved_by = resting.note(&before, pos).masses(inv_mass);
             let memory = memory.as_deref_mut();
-            let parts = (&mut *pos, &mut *vel, inv_mass);
+            let parts = (&mut *pos, &mut *vel, &moved_by);
             self.resolve_self(parts, timing, curve, memory)
         });
         // Self-contact's last pushes may reach into a collider: the colliders have the last
         // word (a floor is never passed; two spans may stay within the rounds' tolerance).
         if last {
-            self.resolve_colliders((pos, vel, inv_mass), timing, curve);
+            self.resolve_colliders((pos, vel, inv_mass), timing, curve, memory.is_some());
         }
         if let Some(memory) = memory {
             memory.checked(curve);
@@ -610,20 +651,28 @@ impl<'a, P: Point> Contacts<'a, P> {
         last.is_some_and(|deepest| deepest > P::Scalar::ZERO)
     }
 
-    /// Pushes a curve of spans drawn through `pos` out of every collider, redrawing after
-    /// every correction the spans its particles weigh in (7 of a cubic spline's, all of a
-    /// natural spline's or one Bézier's); `false` when it left the range (the step's guard
-    /// undoes it).
+    /// Pushes a curve of spans drawn through `pos` out of every collider. A correction
+    /// leaves the spans its particles weigh in (7 of a cubic spline's) to draw again when
+    /// next read, each once however many pushes moved it (all of a natural spline's or one
+    /// Bézier's are drawn again at once); `drawn`: all are drawn again before it returns,
+    /// for a caller that reads the curve after. `false` when it left the range (the step's
+    /// guard undoes it).
     fn resolve_colliders<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         timing: Timing<'_, P>,
         curve: &mut impl DrawnSpans<P, K>,
+        drawn: bool,
     ) -> bool {
+        let n = curve.span_count().min(K);
+        let mut outdated = [false; K];
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = self.offset(k, collider, timing.lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
-            for span in 0..curve.span_count() {
+            for span in 0..n {
+                if core::mem::take(&mut outdated[span]) {
+                    curve.redraw_spans(pos, (span, 1));
+                }
                 let hull = curve.span_bounds(span);
                 if !hull.overlaps(&reach) {
                     continue;
@@ -657,10 +706,20 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let (dx, dv, shifted) = self.response(collider, body, (touch, v, w), braking);
                 if let Some(given) = spread(pos, vel, inv_mass, weights.entries(), (dx, dv)) {
                     self.report(k, given, shifted);
-                    if curve.rebuild(pos, weights.ends()).is_none() {
+                    let Some((first, count)) = curve.outdated(pos, weights.ends()) else {
                         return false;
+                    };
+                    for j in 0..count {
+                        if let Some(span) = (first + j).checked_rem(n) {
+                            outdated[span] = true;
+                        }
                     }
                 }
+            }
+        }
+        if drawn {
+            for span in (0..n).filter(|&span| outdated[span]) {
+                curve.redraw_spans(pos, (span, 1));
             }
         }
         true

@@ -95,40 +95,61 @@ impl Smoothing {
     ) {
         let len = if closed { K } else { n.clamp(2.min(K), K) };
         let t = crate::curves::curve::clamp_unit(t);
+        let Some(local) = self.local(t) else {
+            if self == Smoothing::NaturalSpline {
+                Smoothing::BSpline.row_weights(closed, len, span, t, weights);
+                return natural_weights(weights, closed, len);
+            }
+            crate::curves::sampler::bernstein_weights(t, weights);
+            let repeated: S = weights[len..].iter().fold(S::ZERO, |sum, &w| sum + w);
+            weights[len - 1] += repeated;
+            weights[len..].fill(S::ZERO);
+            return;
+        };
+        *weights = [S::ZERO; K];
+        fold(local, (closed, K), span, len, |i, w| weights[i] += w);
+    }
+
+    /// [`row_weights`](Self::row_weights) of an open curve through `n ≥ 4` particles, the
+    /// same numbers, for the 4 particles from the first returned on (every other weighs 0):
+    /// no pass over all `K`. `None` for one Bézier and the natural spline (every particle
+    /// weighs in) and for fewer than 4 particles.
+    pub(crate) fn window<S: Scalar>(self, n: usize, span: usize, t: S) -> Option<(usize, [S; 4])> {
+        let local = self
+            .local(crate::curves::curve::clamp_unit(t))
+            .filter(|_| n >= 4)?;
+        let first = span.min(n - 2).saturating_sub(1).min(n - 4);
+        let mut weights = [S::ZERO; 4];
+        fold(local, (false, n), span, n, |i, w| weights[i - first] += w);
+        Some((first, weights))
+    }
+
+    /// The weights of the 4 particles from the one before a span of a cubic spline or
+    /// the polyline at `t` in `[0, 1]`; `None` for one Bézier and the natural spline.
+    fn local<S: Scalar>(self, t: S) -> Option<[S; 4]> {
         let zero = S::ZERO;
         let (t2, sixth, half) = (t * t, S::ratio(1, 6), S::ratio(1, 2));
         let t3 = t2 * t;
         let n = |k: i16| S::from_i16(k);
-        let local = match self {
-            Smoothing::Bezier => {
-                crate::curves::sampler::bernstein_weights(t, weights);
-                let repeated: S = weights[len..].iter().fold(zero, |sum, &w| sum + w);
-                weights[len - 1] += repeated;
-                weights[len..].fill(zero);
-                return;
-            }
-            Smoothing::Polyline => [zero, S::ONE - t, t, zero],
-            Smoothing::NaturalSpline => {
-                Smoothing::BSpline.row_weights(closed, len, span, t, weights);
-                return natural_weights(weights, closed, len);
-            }
+        match self {
+            Smoothing::Bezier | Smoothing::NaturalSpline => None,
+            Smoothing::Polyline => Some([zero, S::ONE - t, t, zero]),
             Smoothing::BSpline => {
                 let s = S::ONE - t;
-                [
+                Some([
                     s * s * s * sixth,
                     (n(3) * t3 - n(6) * t2 + n(4)) * sixth,
                     (n(-3) * t3 + n(3) * t2 + n(3) * t + S::ONE) * sixth,
                     t3 * sixth,
-                ]
+                ])
             }
-            Smoothing::CatmullRom => [
+            Smoothing::CatmullRom => Some([
                 (-t3 + n(2) * t2 - t) * half,
                 (n(3) * t3 - n(5) * t2 + n(2)) * half,
                 (n(-3) * t3 + n(4) * t2 + t) * half,
                 (t3 - t2) * half,
-            ],
-        };
-        fold(local, closed, span, len, weights);
+            ]),
+        }
     }
 
     /// The derivatives `d/dt` of [`weights`](Self::weights) at the same point: the particle
@@ -178,37 +199,37 @@ impl Smoothing {
                 (n(3) * t2 - n(2) * t) * half,
             ],
         };
-        fold(local, closed, span, K, slopes);
+        *slopes = [S::ZERO; K];
+        fold(local, (closed, K), span, K, |i, w| slopes[i] += w);
     }
 }
 
-/// Writes the local weights of particles `span-1 ..= span+2` of a spline over the first `n`
-/// of `K` particles (`2 ≤ n ≤ K`; all `K` when `closed`) into `weights` (zero elsewhere),
+/// Hands `add` the local weights of particles `span-1 ..= span+2` of a spline over the
+/// first `n` particles (`2 ≤ n`; all `ring` when `closed`), each with its particle,
 /// `span` clamped to the last: open ends reflect a phantom particle through the end one
 /// (`2·p0 - p1`), as the spans were built; a closed curve wraps.
-fn fold<S: Scalar, const K: usize>(
+fn fold<S: Scalar>(
     local: [S; 4],
-    closed: bool,
+    (closed, ring): (bool, usize),
     span: usize,
     n: usize,
-    weights: &mut [S; K],
+    mut add: impl FnMut(usize, S),
 ) {
-    *weights = [S::ZERO; K];
-    let spans = if closed { K } else { n.saturating_sub(1) };
+    let spans = if closed { ring } else { n.saturating_sub(1) };
     let span = span.min(spans.saturating_sub(1));
     for (k, w) in local.into_iter().enumerate() {
         let i = span as isize + k as isize - 1;
         let last = n as isize - 1;
         if closed {
-            weights[i.rem_euclid(K as isize) as usize] += w;
+            add(i.rem_euclid(ring as isize) as usize, w);
         } else if i < 0 {
-            weights[0] += w + w;
-            weights[1] -= w;
+            add(0, w + w);
+            add(1, -w);
         } else if i > last {
-            weights[n - 1] += w + w;
-            weights[n - 2] -= w;
+            add(n - 1, w + w);
+            add(n - 2, -w);
         } else {
-            weights[i as usize] += w;
+            add(i as usize, w);
         }
     }
 }
@@ -367,8 +388,28 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     pub(crate) fn redraw(
         &mut self,
         particles: &[P; K],
-        (lo, hi): (usize, usize),
+        moved: (usize, usize),
     ) -> Result<(usize, usize), Error> {
+        match self.outdated(particles, moved)? {
+            Some(spans) => {
+                self.redraw_spans(particles, spans);
+                Ok(spans)
+            }
+            None => Ok((0, self.span_count())),
+        }
+    }
+
+    /// What [`redraw`](Self::redraw) would draw again after particles `lo..=hi` moved,
+    /// `(first, count)` round a loop, left to [`redraw_spans`](Self::redraw_spans); `None`
+    /// when they weigh in every span, which this draws again at once.
+    ///
+    /// # Errors
+    /// As [`open`](Self::open), for the moved particles.
+    pub(crate) fn outdated(
+        &mut self,
+        particles: &[P; K],
+        (lo, hi): (usize, usize),
+    ) -> Result<Option<(usize, usize)>, Error> {
         let spans = self.span_count();
         let closed = spans == K;
         // How many spans before the first moved particle and after the last it weighs in.
@@ -384,17 +425,24 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             } else {
                 Self::open_first(self.method, particles, self.len)
             }?;
-            return Ok((0, spans));
+            return Ok(None);
         }
         check_points(&particles[lo..=hi], "particles")?;
-        let (first, count) = if closed {
+        Ok(Some(if closed {
             ((lo + K - before) % K, count)
         } else {
             let first = lo.saturating_sub(before);
             (first, (hi + after).min(spans - 1) + 1 - first)
-        };
+        }))
+    }
+
+    /// Draws spans `first..first + count` (round a loop) again from `particles`, as
+    /// [`outdated`](Self::outdated) gave them.
+    pub(crate) fn redraw_spans(&mut self, particles: &[P; K], (first, count): (usize, usize)) {
+        let spans = self.span_count();
+        let closed = spans == K;
         let (method, n, f) = (self.method, self.len, Fractions::new());
-        let index = |j: usize| (first + j) % spans;
+        let index = |j: usize| (first + j).checked_rem(spans).unwrap_or(0);
         match &mut self.pieces {
             Pieces::Cubic(s, _) => (0..count).map(index).for_each(|i| {
                 s[i] = match (closed, method) {
@@ -412,7 +460,6 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             }),
             Pieces::Whole(_) => {}
         }
-        Ok((first, count))
     }
 
     /// Samples the curve with the format's [`DefaultSampler`]; returns the count. One
@@ -547,6 +594,15 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     pub fn weights(&self, span: usize, t: P::Scalar, weights: &mut [P::Scalar; K]) {
         let closed = self.span_count() == K;
         self.method.row_weights(closed, self.len, span, t, weights);
+    }
+
+    /// [`weights`](Self::weights) of an open curve's cubic or straight span: the first of
+    /// the 4 particles that can weigh in and their weights; `None` on a loop, for one
+    /// Bézier, the natural spline and fewer than 4 particles.
+    pub(crate) fn window(&self, span: usize, t: P::Scalar) -> Option<(usize, [P::Scalar; 4])> {
+        (self.span_count() != K)
+            .then(|| self.method.window(self.len, span, t))
+            .flatten()
     }
 
     /// Length of the curve within `accuracy` (see [`Bezier::arclen`]), shared between the

@@ -100,4 +100,12 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Spans<'_, P, K> {
         self.redraw(pos);
         Some((0, K - 3))
     }
+    /// Every span weighs in each control point: drawn again at once.
+    fn outdated(&mut self, pos: &[P; K], _: (usize, usize)) -> Option<(usize, usize)> {
+        self.redraw(pos);
+        Some((0, 0))
+    }
+    fn redraw_spans(&mut self, pos: &[P; K], _: (usize, usize)) {
+        self.redraw(pos);
+    }
 }
