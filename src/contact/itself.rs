@@ -155,11 +155,10 @@ impl<P: Point> Contacts<'_, P> {
                 let margin = near.elsewhere.map_or(gap, |e| {
                     (e - gap).max((e - dist) * P::Scalar::ratio(1, 2)).min(gap)
                 });
-                memory.remember(pair, margin, Some(places));
+                memory.remember(pair, margin, Some((places, dist - gap)));
             } else {
-                memory.moved_to(pair, places);
+                memory.moved_to(pair, (places, dist - gap));
             }
-            memory.clear_by(pair, dist - gap);
         }
         // Two spans that cross exactly give no direction to part them: the next substep will.
         if !(dist < gap && dist > gap * P::Scalar::ratio(1, 1024)) {

@@ -171,14 +171,15 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
     }
 
     /// Remembers of spans `a < b` (both just read) that, `margin` over the gap they must
-    /// keep, they are apart (`near` is `None`) or touch nowhere but about `near`; nothing
-    /// when `margin` is not positive (the pair is searched again next time). Replaces the
-    /// pair's old entry, else a free one, else the one that expires first.
+    /// keep, they are apart (`near` is `None`) or touch nowhere but about `near`'s places,
+    /// where they are its clearance farther apart than the gap; nothing when `margin` is not
+    /// positive (the pair is searched again next time). Replaces the pair's old entry, else
+    /// a free one, else the one that expires first.
     pub(crate) fn remember(
         &mut self,
         (a, b): (usize, usize),
         margin: P::Scalar,
-        near: Option<Places<P::Scalar>>,
+        near: Option<(Places<P::Scalar>, P::Scalar)>,
     ) {
         let (slot, moved) = (self.find((a, b)), self.moved((a, b)));
         let (Ok(first), Ok(second), Some(moved)) = (u16::try_from(a), u16::try_from(b), moved)
@@ -207,32 +208,29 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
             })
         });
         // Found apart, they stay so while their moves add up to less than the margin; found
-        // near, [`clear_by`](Self::clear_by) says how long.
+        // near, less than their clearance.
         self.pairs[row][k] = Some(Pair {
             spans: (first, second),
             until,
-            clear: if near.is_some() { moved } else { until },
-            near,
+            clear: near.map_or(until, |(_, clearance)| moved + clearance),
+            near: near.map(|(places, _)| places),
         });
     }
 
-    /// Keeps the nearest points of spans `a < b`, found again from what [`recall`] gave.
+    /// Keeps the nearest points of spans `a < b` (both just read), found again from what
+    /// [`recall`] gave, where they are `clearance` farther apart than the gap: nothing to
+    /// search while their moves add up to less.
     ///
     /// [`recall`]: Self::recall
-    pub(crate) fn moved_to(&mut self, (a, b): (usize, usize), near: Places<P::Scalar>) {
-        if let Some((row, k)) = self.find((a, b))
-            && let Some(p) = &mut self.pairs[row][k]
-        {
-            p.near = Some(near);
-        }
-    }
-
-    /// Notes that spans `a < b`, just read, are `clearance` farther apart than the gap where
-    /// they come nearest: nothing to search while their moves add up to less.
-    pub(crate) fn clear_by(&mut self, (a, b): (usize, usize), clearance: P::Scalar) {
+    pub(crate) fn moved_to(
+        &mut self,
+        (a, b): (usize, usize),
+        (near, clearance): (Places<P::Scalar>, P::Scalar),
+    ) {
         if let (Some(moved), Some((row, k))) = (self.moved((a, b)), self.find((a, b)))
             && let Some(p) = &mut self.pairs[row][k]
         {
+            p.near = Some(near);
             p.clear = moved + clearance;
         }
     }
@@ -296,8 +294,7 @@ mod tests {
         // Near about a place, 0.2 clear of the gap, valid for moves of 0.5.
         let places = ((0.5, 0.5), None);
         let _ = recall(&mut memory, 5, 5.0);
-        memory.remember(pair(5), 0.5, Some(places));
-        memory.clear_by(pair(5), 0.2);
+        memory.remember(pair(5), 0.5, Some((places, 0.2)));
         assert!(recall(&mut memory, 5, 5.15) == Recall::Apart);
         assert!(recall(&mut memory, 5, 5.25) == Recall::Near(places));
         assert!(recall(&mut memory, 5, 5.55) == Recall::Unknown);

@@ -124,10 +124,9 @@ const SELF_ROUNDS: usize = 12;
 
 /// The share of its inverse mass that a particle a collider pushed moves by in
 /// self-contact, in the same substep's rounds: a rope resting on a floor is held by it, so a
-/// span landing on it moves it less (mass scaling, as in shock propagation). In the first
-/// settled pile of `a_rope_dropped_in_a_pile_never_passes_through_itself` (f32), each round
-/// leaves about 0.62 of the deepest overlap, where with the full inverse mass it left 0.73
-/// (the floor pushed back what self-contact pushed into it): 9 rounds a frame, not 14.
+/// span landing on it moves it less (mass scaling, as in shock propagation), and a round no
+/// longer pushes the bottom of a heap into the floor for the next to push it out again:
+/// fewer rounds settle a pile (`docs/summary.md`, section (g)).
 const RESTING_SHARE: (u32, u32) = (3, 10);
 
 /// The particles a collider pushed in a substep's rounds so far.

@@ -577,7 +577,7 @@ mod tests {
                         let margin = near
                             .elsewhere
                             .map_or(gap, |e| (e - gap).max((e - dist) * 0.5).min(gap));
-                        memory.remember(pair, margin, Some((near.at, near.also)));
+                        memory.remember(pair, margin, Some(((near.at, near.also), 0.0)));
                     }
                 }
             }

@@ -12,3 +12,4 @@ pub mod sampler;
 pub mod smooth;
 mod spans;
 pub mod surface;
+mod weights;
