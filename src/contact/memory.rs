@@ -166,7 +166,7 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
 
     /// The two rows pair `(a, b)` may be kept in (both spans below `K`).
     fn rows(&self, (a, b): (usize, usize)) -> [usize; 2] {
-        let row = (a % K + b % K) % K;
+        let row = (a + b) % K;
         [row, (row + 1) % K]
     }
 
