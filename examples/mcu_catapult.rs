@@ -4,7 +4,7 @@
 //! solved together each frame by [`DirectChain`] (one solve of up to 2 tridiagonal Newton
 //! iterations, the second only where the first leaves a link off its length, halved where
 //! a link ends more than 0.1% off; one substep a frame at any stiffness). 600 steps at
-//! 60 Hz, in Q16.16 on a Cortex-M0 (at most 27 328 instructions a frame: its target of
+//! 60 Hz, in Q16.16 on a Cortex-M0 (at most 28 597 instructions a frame: its target of
 //! 25 000 is missed by the check that every link ends within 0.1%) and in f32 on a
 //! Cortex-M4F.
 //!

@@ -366,7 +366,8 @@ impl<P: Point> Collider<P> {
     }
 
     /// A number that orders points near the solid as [`gap`](Self::gap) does, with no square
-    /// root: the squared distance to a ball's centre or a capsule's axis, times `scale²`, else
+    /// root: the squared distance to a ball's centre or a capsule's axis, times `scale²`; a
+    /// box's squared distance times `scale²` outside it and its depth, negated, inside; else
     /// the gap. `scale` (from [`key_scale`](Self::key_scale)) keeps the square inside `Q16`.
     pub(crate) fn search_key(&self, p: P, scale: P::Scalar) -> P::Scalar {
         let off = match &self.solid {
@@ -374,6 +375,13 @@ impl<P: Point> Collider<P> {
             Solid::Capsule { a, dir, length, .. } => {
                 let along = (p - *a).dot(*dir).max(P::Scalar::ZERO).min(*length);
                 p - (*a + *dir * along)
+            }
+            Solid::Box(b) => {
+                let off = p - p.max_coords(b.min).min_coords(b.max);
+                if off == P::default() {
+                    return -inside_box(b, p);
+                }
+                off
             }
             _ => return self.gap(p),
         };
@@ -387,10 +395,13 @@ impl<P: Point> Collider<P> {
 
     /// The scale for [`search_key`](Self::search_key) over points whose gap is at most
     /// `gap`: 1 in floats; in fixed point a power of two that keeps the scaled distance to
-    /// the centre or axis under 128, so that its square does not saturate.
+    /// the centre or axis under 128, so that its square does not saturate, and for a box the
+    /// largest such power up to 1 024, so that a small distance's square keeps its
+    /// resolution.
     pub(crate) fn key_scale(&self, gap: P::Scalar) -> P::Scalar {
         let radius = match &self.solid {
             Solid::Ball { radius, .. } | Solid::Capsule { radius, .. } => *radius,
+            Solid::Box(_) => P::Scalar::ZERO,
             _ => return P::Scalar::ONE,
         };
         let (mut reach, mut scale) = (gap.max(P::Scalar::ZERO) + radius, P::Scalar::ONE);
@@ -398,6 +409,12 @@ impl<P: Point> Collider<P> {
             let (limit, half) = (P::Scalar::from_i16(128), P::Scalar::ratio(1, 2));
             while reach >= limit {
                 (reach, scale) = (reach * half, scale * half);
+            }
+            if matches!(self.solid, Solid::Box(_)) {
+                let (double, most) = (P::Scalar::from_i16(2), P::Scalar::from_i16(1024));
+                while reach * double < limit && scale < most {
+                    (reach, scale) = (reach * double, scale * double);
+                }
             }
         }
         scale
@@ -557,6 +574,15 @@ fn from_centre<P: Point>(p: P, centre: P, radius: P::Scalar) -> (P::Scalar, P) {
         (len, Some(n)) => (len - radius, n),
         (_, None) => (-radius, first_axis()),
     }
+}
+
+/// How deep `p`, inside `b`, is: its distance to the nearest face.
+fn inside_box<P: Point>(b: &Aabb<P>, p: P) -> P::Scalar {
+    (0..P::DIM).fold(P::Scalar::SAFE_RANGE, |least, d| {
+        least
+            .min(p.coord(d) - b.min.coord(d))
+            .min(b.max.coord(d) - p.coord(d))
+    })
 }
 
 fn box_distance<P: Point>(b: &Aabb<P>, p: P) -> (P::Scalar, P) {
@@ -739,5 +765,31 @@ mod tests {
             Err(Error::OutOfRange { .. })
         ));
         assert_eq!(moved, ball);
+    }
+
+    /// A box's search key orders points as their gap does, inside the box and out, in `f64`
+    /// and, scaled, in `Q16`: the search for a span's deepest point in a box takes no root.
+    #[test]
+    fn a_box_key_orders_points_as_their_gap_does() {
+        fn check<S: Scalar>(resolution: f64) {
+            let at = |i: i32, j: i32| {
+                Vec2::new(S::from_f64(0.1 * i as f64), S::from_f64(0.1 * j as f64))
+            };
+            let b = Collider::aabb(at(-10, -5), at(10, 5)).unwrap();
+            let scale = b.key_scale(S::from_f64(0.8));
+            let grid = || (-12..=12).flat_map(|i| (-8..=8).map(move |j| at(i, j)));
+            for p in grid() {
+                for q in grid() {
+                    let (gp, gq) = (b.gap(p).to_f64(), b.gap(q).to_f64());
+                    let (kp, kq) = (b.search_key(p, scale), b.search_key(q, scale));
+                    if (gp - gq).abs() > resolution {
+                        assert_eq!(gp < gq, kp < kq, "{p:?} {q:?}: {gp} {gq}");
+                    }
+                }
+            }
+        }
+        check::<f64>(1e-12);
+        #[cfg(feature = "fixed")]
+        check::<crate::Q16>(1e-3);
     }
 }

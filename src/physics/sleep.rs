@@ -29,10 +29,11 @@ use crate::{Aabb, Error, MassSpring, Point, Scalar};
 /// While asleep, [`step`](MassSpring::step) reports [`StepInfo::asleep`], no substeps and
 /// the `dt` simulated; the clock runs on. An awake run would have moved it by about what
 /// its last speeds cover while damping takes them (up to `2 · speed / damping rate` for a
-/// damped swing): choose `speed` from what may go unseen. In `Q16`, a
-/// [`DirectChain`](crate::integrator::DirectChain)'s solve leaves a rounding jitter in a
-/// rope at rest (hundredths of a unit a second with one substep, more with its default 4):
-/// give it one substep and a `speed` above the jitter (the tests use 0.05 units/s).
+/// damped swing): choose `speed` from what may go unseen. In `Q16`, rounding keeps a rope
+/// at rest moving a little: a 7-unit [`DirectChain`](crate::integrator::DirectChain) rope
+/// held at both ends under a drag of 0.1/s moves up to 0.12 units/s with its default 4
+/// substeps and 0.007 with one (`tests/suite/physics.rs`); under a drag of 2/s, under the
+/// default `speed`: it falls asleep at its defaults (`tests/suite/sleep.rs`).
 ///
 /// Cost (`cargo run --release -p dunas-evaluate -- --only sleep`, section (k) of
 /// `docs/summary.md`): a frame of 100 objects asleep takes under 1% of their frame awake, and

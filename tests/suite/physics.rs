@@ -1222,6 +1222,49 @@ fn direct_chain_in_q16_and_cut() {
     );
 }
 
+/// `DirectChain` in `Q16` leaves a rope at rest as still as the format allows: a 7-unit,
+/// 8-particle rope of mass 1 held at both ends 5 units apart, under a drag of 0.1/s,
+/// moves at most 0.01 units/s in its 60th second with one substep a step, and 0.2 units/s
+/// with its default 4 (0.023 and 0.46 when each solve's velocity was its move over `h`
+/// and its multipliers were not scaled: a drag's share under a unit of the format was
+/// rounded away every solve, and a particle of inverse mass 8 moved in steps of 8 units).
+#[cfg(feature = "fixed")]
+#[test]
+fn direct_chain_in_q16_keeps_a_rope_at_rest_nearly_still() {
+    use dunas::integrator::DirectChain;
+    let q = Q16::from_f64;
+    for (substeps, most) in [(1, 0.01), (4, 0.2)] {
+        let settings = Settings {
+            gravity: Vec2::new(q(0.0), q(-9.81)),
+            damping: q(0.1),
+            ..Settings::default()
+        }
+        .with_integrator(DirectChain {
+            substeps,
+            ..DirectChain::default()
+        });
+        let material = Material {
+            stiffness: q(2000.0),
+            damping: q(1.0),
+        };
+        let (start, end) = (Vec2::new(q(0.0), q(0.0)), Vec2::new(q(7.0), q(0.0)));
+        let mut rope: Rope<Vec2<Q16>, 8, 8, DirectChain> =
+            Rope::new(start, end, q(1.0), material, settings).unwrap();
+        rope.set_inv_mass(7, q(0.0)).unwrap();
+        rope.set_position(7, Vec2::new(q(5.0), q(0.0))).unwrap();
+        let mut fastest = 0.0f64;
+        for frame in 0..3600 {
+            let _ = rope.step(Q16::ratio(1, 60)).unwrap();
+            if frame >= 3540 {
+                let speeds = rope.velocities().iter().map(|v| v.length().to_f64());
+                fastest = speeds.fold(fastest, f64::max);
+            }
+        }
+        eprintln!("{substeps} substep(s): {fastest:.4} units/s at most in the 60th second");
+        assert!(fastest <= most, "{substeps}: {fastest}");
+    }
+}
+
 /// `DirectChain` with contacts on the drawn curve: a rope held at both ends sags onto a peg
 /// (a third of its particle spacing, and a tenth) and rests on it, its links at their
 /// length. (The tenth was pulled through while the links' solve took back what the

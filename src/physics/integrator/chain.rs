@@ -57,8 +57,8 @@ use core::cell::Cell;
 /// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
 /// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
 /// contacts and up to `8 · iterations` Newton iterations of the links (twice that where
-/// they fall back): in the player's scene on a Cortex-M0, 284 245 instructions a frame on
-/// average and 2.5 million at worst (`docs/devices.md`), 4.2 times the frame without the
+/// they fall back): in the player's scene on a Cortex-M0, 265 502 instructions a frame on
+/// average and 3.3 million at worst (`docs/devices.md`), 4.2 times the frame without the
 /// box in f32 on the host (`docs/summary.md`, targets). With springs instead of links
 /// (`inextensible: false`), the contacts take rounds after each solve as
 /// [`DirectSprings`](super::DirectSprings)' do (until a round moves no particle by more than
@@ -90,6 +90,13 @@ use core::cell::Cell;
 ///   (Pulling each link along its direction at the solve's start, as SHAKE does, keeps 99%
 ///   without a bob, but the light links beside a heavy bob then whip out of control: their
 ///   sideways motion under its tension is stepped explicitly.)
+/// - in `Q16`, a 7-unit, 8-particle rope held at both ends under a drag of 0.1/s moves up
+///   to 0.12 units/s in its 60th second (0.007 with one substep a step): the format's
+///   rounding, left over. A solve keeps the share of each velocity that `v h` rounds away,
+///   and solves its links' multipliers in units of the largest inverse mass (a power of two,
+///   up to 1 024), so that a light particle moves in steps of the format's resolution
+///   (0.46 and 0.023 units/s without either;
+///   `physics::direct_chain_in_q16_keeps_a_rope_at_rest_nearly_still`).
 ///
 /// Cost: per iteration, a square root, two inverses and about 15 multiplications a link;
 /// per solve, about five multiplications a link and a square root to check where the links
@@ -98,8 +105,8 @@ use core::cell::Cell;
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.01× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.99
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
-/// Q16.16, one solve of up to 2 iterations takes up to 22 100 instructions a step for 8
-/// particles, and a frame with its 33-point curve up to 27 328 (`examples/mcu_catapult.rs`).
+/// Q16.16, one solve of up to 2 iterations takes up to 23 300 instructions a step for 8
+/// particles, and a frame with its 33-point curve up to 28 597 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
     /// Newton iterations a solve at most (4 by default); a solve stops as soon as its links
@@ -473,6 +480,10 @@ impl DirectChain {
                 }
             }
         }
+        // In `Q16`, where the velocities alone carried the particles: a velocity is kept as
+        // that velocity plus the solve's correction over `h`, so that what `v h` rounded
+        // away (a drag's or gravity's share under a unit of the format) stays in it.
+        let predicted = P::Scalar::FIXED_POINT.then_some(state.pos);
         for iteration in 1..=iterations {
             // The last of several iterations, after one that took its whole step, starts near
             // the solution, where a Newton step lowers the stretch: it is taken whole,
@@ -489,9 +500,13 @@ impl DirectChain {
         let off = links.off(Sh::flat(&state.pos));
         let converged = off <= tolerance_of(DirectChain::TOLERANCE);
         let (x, v) = (Sh::flat(&state.pos), Sh::flat_mut(&mut state.vel));
-        for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(Sh::flat(&prev)).zip(w) {
+        let from = Sh::flat(predicted.as_ref().unwrap_or(&prev));
+        for (((v, &x), &p), &w) in v.iter_mut().zip(x).zip(from).zip(w) {
             if w > zero {
-                *v = (x - p) * inv_h;
+                match predicted {
+                    Some(_) => *v += (x - p) * inv_h,
+                    None => *v = (x - p) * inv_h,
+                }
             }
         }
         if let Some(e0) = start_energy {

@@ -37,6 +37,12 @@ pub(super) struct Links<P: Point, Sh: Shape> {
     pub(super) close: P::Scalar,
     /// Whether their stretch is measured finely ([`squared`]).
     fine: bool,
+    /// One over the scale the multipliers are solved and kept in: in `Q16` the largest
+    /// power of two up to the largest inverse mass (at most 1 024), so that a particle's
+    /// move (its inverse mass times a change of its links' multipliers) and the pivots'
+    /// inverses keep the format's resolution; 1 in floats. The links' matrix and
+    /// compliances are kept times it, the multipliers over it.
+    down: P::Scalar,
 }
 
 /// Most times a Newton step is halved before it is taken as it is.
@@ -97,14 +103,26 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             exact: zero,
             close: zero,
             fine: false,
+            down: P::Scalar::ONE,
         };
+        if P::Scalar::FIXED_POINT {
+            // In `Q16` a unit of the format times an inverse mass of 8 is a move of 8 units;
+            // a multiplier solved 8 times larger moves it by one.
+            let most = w.iter().fold(zero, |most, &w| most.max(w));
+            let (half, least) = (P::Scalar::ratio(1, 2), P::Scalar::ratio(1, 1024));
+            let mut scale = P::Scalar::ONE;
+            while scale + scale <= most && links.down > least {
+                (scale, links.down) = (scale + scale, links.down * half);
+            }
+        }
         model.topology.for_each_spring(|i, j, length, m| {
             if i.abs_diff(j) == 1 {
                 let i = i.min(j);
                 Sh::flat_mut(&mut links.rest)[i] = length;
                 Sh::flat_mut(&mut links.linked)[i] = w[i] + w[i + 1] > zero;
                 if let (Some((inv_h, h)), true) = (h, m.stiffness > zero) {
-                    Sh::flat_mut(&mut links.compliance)[i] = compliance(inv_h, h, m.stiffness);
+                    Sh::flat_mut(&mut links.compliance)[i] =
+                        compliance(inv_h, h, m.stiffness) * links.down;
                 }
             }
         });
@@ -140,8 +158,9 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
 
     /// The largest distance of a link at `x` from its goal, relative to its rest length:
     /// `|l − g| / rest`, `g = rest − α̃ λ` its goal (its rest length when inextensible; a
-    /// spring's multiplier is known to the format's resolution only, so 16 units of it are
-    /// allowed for: in `Q16`, 0.02% of a 1 m link under a compliance of 1). First from the
+    /// spring's multiplier is known to the format's resolution only, so 16 units of it, over
+    /// the scale it is kept in, are allowed for: in `Q16`, at most 0.02% of a 1 m link under
+    /// a compliance of 1). First from the
     /// squared lengths, `|l² − g²| / g²` (about twice the ratio): where every link is within
     /// twice the tolerance that way, only the largest is measured (one square root), and
     /// the ratio is the largest to within its own square; otherwise every link is measured
@@ -254,6 +273,9 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
     /// direction sits the iteration out.
     pub(super) fn solve<M: Mobility<P> + ?Sized>(&mut self, x: &mut [P], w: &mut M, whole: bool) {
         let zero = P::Scalar::ZERO;
+        // The matrix `down` times the links', each move `down` times its particle's (see
+        // `down`).
+        let down = self.down;
         let (rest, compliance) = (Sh::flat(&self.rest), Sh::flat(&self.compliance));
         let (linked, lambda) = (Sh::flat(&self.linked), Sh::flat_mut(&mut self.lambda));
         let dir = Sh::flat_mut(&mut self.dir);
@@ -301,7 +323,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                 (prev_ratio, prev_solved, prev_off) = (zero, zero, zero);
                 continue;
             }
-            let own = w.along_link(i, dir[i]);
+            let own = w.along_link(i, dir[i]).map(|own| own * down);
             let diag = own.unwrap_or(zero) + compliance[i] - prev_off * prev_ratio;
             if own.is_none() || diag <= zero {
                 (dir[i], solved[i]) = (P::default(), zero);
@@ -310,7 +332,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             }
             let inv = diag.approx_recip();
             let off = if i + 1 < links && dir[i + 1] != P::default() {
-                -w.between(i + 1, dir[i], dir[i + 1])
+                -w.between(i + 1, dir[i], dir[i + 1]) * down
             } else {
                 zero
             };
@@ -333,7 +355,7 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
             let mut most = zero;
             for i in 0..x.len() {
                 let pull = if i > 0 { pulled(i - 1) } else { P::default() };
-                let moved = w.moved(i, pull - pulled(i));
+                let moved = w.moved(i, pull - pulled(i)) * down;
                 most = most.max(moved.dot(moved));
             }
             let most = most.sqrt();
@@ -359,8 +381,8 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
                     P::default()
                 };
                 if w.free(i) {
-                    x[i] += w.moved(i, pull - out);
-                    w.pulled(i, pull - out);
+                    x[i] += w.moved(i, pull - out) * down;
+                    w.pulled(i, (pull - out) * down);
                 }
                 pull = out;
             }
