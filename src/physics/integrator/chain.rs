@@ -57,9 +57,10 @@ use core::cell::Cell;
 /// it used to pull the curve 0.7 m into the box), and a rope rests on a peg of a tenth
 /// of its spacing (`direct_chain_rests_on_a_peg`). Each round costs a pass of the
 /// contacts and up to `8 · iterations` Newton iterations of the links (twice that where
-/// they fall back): in the player's scene on a Cortex-M0, 265 502 instructions a frame on
-/// average and 3.3 million at worst (`docs/devices.md`), 4.2 times the frame without the
-/// box in f32 on the host (`docs/summary.md`, targets). With springs instead of links
+/// they fall back; a hold stops once an iteration takes less than a sixteenth off the
+/// links' squared stretch, and falls back then): in the player's scene on a Cortex-M0,
+/// 248 330 instructions a frame on average and 2.0 million at worst (`docs/devices.md`),
+/// 4.1 times the frame without the box in f32 on the host (`docs/summary.md`, targets). With springs instead of links
 /// (`inextensible: false`), the contacts take rounds after each solve as
 /// [`DirectSprings`](super::DirectSprings)' do (until a round moves no particle by more than
 /// 0.1% of the shortest spring, `converged` false where they do not agree): a load of 20

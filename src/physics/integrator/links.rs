@@ -237,7 +237,9 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
     /// Moves the particles (positions only, as `w` lets them) towards every link within
     /// [`DirectChain::TOLERANCE`], in up to `4 · iterations` Newton iterations, stopping
     /// once the links' squared stretch is within `enough` ([`exact`](Self::exact) or
-    /// [`close`](Self::close)) or an iteration gains nothing; how far off they end
+    /// [`close`](Self::close)) or an iteration takes less than `w`'s
+    /// [`least_gain`](Mobility::least_gain) off it (nothing at all when it has none); how far
+    /// off they end
     /// ([`off`](Self::off)). Does nothing when they are within already (about five
     /// multiplications a link to find out).
     #[inline(never)]
@@ -254,7 +256,13 @@ impl<P: Point, Sh: Shape> Links<P, Sh> {
         for _ in 0..iterations.saturating_mul(4) {
             let start = self.measured;
             self.solve(x, w, false);
-            let stuck = start.is_some() && self.measured == start;
+            let stuck = match (start, self.measured, w.least_gain()) {
+                (Some(start), Some(now), Some((n, d))) => {
+                    now >= start - start * P::Scalar::ratio(n, d)
+                }
+                (Some(start), Some(now), None) => now == start,
+                _ => false,
+            };
             if stuck || self.measured.is_some_and(|r| r <= enough) {
                 break;
             }
@@ -442,6 +450,11 @@ pub(super) trait Mobility<P: Point> {
     /// The most a Newton step may move a particle, in multiples of the largest link's
     /// distance from its goal: `None` for no bound.
     fn reach(&self) -> Option<P::Scalar>;
+    /// The least share `(n, d)` of the links' squared stretch a Newton iteration must take
+    /// off for the iterations to go on (`None`: any).
+    fn least_gain(&self) -> Option<(u32, u32)> {
+        None
+    }
 }
 
 impl<P: Point> Mobility<P> for &[P::Scalar] {
@@ -506,6 +519,13 @@ impl<P: Point> Mobility<P> for Held<'_, P> {
 
     fn reach(&self) -> Option<P::Scalar> {
         Some(P::Scalar::from_i16(REACH))
+    }
+
+    /// A sixteenth: links whose particles are held where they cannot reach their length
+    /// gain less and less an iteration; the links then fall back to free particles sooner
+    /// ([`DirectChain`]'s hold after contacts).
+    fn least_gain(&self) -> Option<(u32, u32)> {
+        Some((1, 16))
     }
 }
 
