@@ -60,10 +60,11 @@ use core::cell::Cell;
 /// they fall back; a hold stops once an iteration takes less than a sixteenth off the
 /// links' squared stretch, and falls back then): in the player's scene on a Cortex-M0,
 /// 248 330 instructions a frame on average and 2.0 million at worst (`docs/devices.md`),
-/// 4.1 times the frame without the box in f32 on the host (`docs/summary.md`, targets). With springs instead of links
-/// (`inextensible: false`), the contacts take rounds after each solve as
-/// [`DirectSprings`](super::DirectSprings)' do (until a round moves no particle by more than
-/// 0.1% of the shortest spring, `converged` false where they do not agree): a load of 20
+/// 4.1 times the frame without the box in f32 on the host (`docs/summary.md`, targets).
+/// With springs instead of links (`inextensible: false`), the contacts take rounds after
+/// each solve as [`DirectSprings`](super::DirectSprings)' do (until a round moves no
+/// particle by more than 0.1% of the shortest spring, `converged` false where they do not
+/// agree): a load of 20
 /// to 70 kg on 2 000 N/m springs wrapping the same box went a quarter of the rope's
 /// thickness to 5 times it into the box with one round, and stays out now
 /// (`promises::a_load_round_a_box_keeps_a_springy_rope_out_of_it`).
@@ -106,7 +107,7 @@ use core::cell::Cell;
 /// [`Point::length_and_inverse`], and a pivot's from [`Scalar::approx_recip`]); the same at
 /// every stiffness (within 1.01× from 10² to 10⁸ N/m, `docs/summary.md`, section (j)), 1.99
 /// times symplectic Euler's frame on the catapult rope's own soft springs. On a Cortex-M0 in
-/// Q16.16, one solve of up to 2 iterations takes up to 23 300 instructions a step for 8
+/// Q16.16, one solve of up to 2 iterations takes up to 23 331 instructions a step for 8
 /// particles, and a frame with its 33-point curve up to 28 597 (`examples/mcu_catapult.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectChain {
