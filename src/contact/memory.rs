@@ -16,7 +16,9 @@ use crate::{Point, Scalar};
 /// gap, they stay so while their moves add up to less than `c`, and take no Newton step
 /// meanwhile. Each span's moves are added up whenever a
 /// pair reads it (the largest of its four control points' moves since it was last read),
-/// whatever moved it: the integrator, a collider, a push. Lives on the stack for one step:
+/// whatever moved it: the integrator, a collider, a push. It also keeps which pairs the
+/// last pass of self-contact pushed apart, and where ([`pushes`](Self::pushes)). Lives on
+/// the stack for one step:
 /// `K` spans' control points and [`WAYS`] pairs a span, shared: a pair `(a, b)` is kept in
 /// one of the `2·WAYS` places of rows `(a + b) mod K` and the next, so that the few spans a
 /// pile heaps near many others do not each fill a row of their own.
@@ -30,6 +32,24 @@ pub(crate) struct PairMemory<P: Point, const K: usize> {
     pairs: [[Option<Pair<P::Scalar>>; WAYS]; K],
     /// Each span's `travel` when self-contact last ran.
     checked: [P::Scalar; K],
+    /// Pairs of spans `a < b` that self-contact's last pass pushed apart, in row `a`, with
+    /// the parameters of the points it pushed.
+    pushed: [[Option<Pushed<P::Scalar>>; WAYS]; K],
+}
+
+/// A pair of spans `(a, b)` pushed apart at parameters `(u, v)`.
+type Pushed<S> = ((u16, u16), (S, S));
+
+/// Whether self-contact runs in a substep ([`PairMemory::due`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Due {
+    /// Not: what the last pass pushed apart is held apart.
+    Not,
+    /// A step's first substep, whose pass finds what to hold apart until the next: a
+    /// pass of a few rounds (the step's last settles what it leaves).
+    First,
+    /// A pass that settles the overlaps.
+    Full,
 }
 
 /// What holds for a pair of spans while they have not moved `until`, and that they are
@@ -59,6 +79,11 @@ pub(crate) enum Recall<S> {
     Near(Places<S>),
 }
 
+/// Substeps that must follow a step's first for self-contact to run in it too: fewer would
+/// hold too little of the step apart to repay the pass (a settled 16-particle pile under
+/// XPBD's 3 substeps: 2% more instructions with 2; under symplectic Euler's 7, 17% fewer).
+const HELD: i16 = 3;
+
 /// Pairs remembered a span, on average.
 const WAYS: usize = 4;
 
@@ -70,29 +95,39 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
             travel: [P::Scalar::ZERO; K],
             pairs: [[None; WAYS]; K],
             checked: [P::Scalar::ZERO; K],
+            pushed: [[None; WAYS]; K],
         }
     }
 
-    /// Whether self-contact is due now, in a substep of a step (`last`: its last substep):
-    /// in the last, and whenever a span of `curve` has moved an eighth of `gap` since
-    /// self-contact last ran (two spans then cannot have closed more than a quarter of it,
-    /// let alone passed through each other). Reads every span; a span that is neither a
-    /// cubic nor straight makes it due.
+    /// Whether self-contact is due now, at the end of a substep of `h` seconds `lag` seconds
+    /// before the step's end, and how: [`Due::Full`] in the last substep and whenever a span
+    /// of `curve` has moved an eighth of `gap` since self-contact last ran (two spans then
+    /// cannot have closed more than a quarter of it, let alone passed through each other);
+    /// else [`Due::First`] in the first when [`HELD`] substeps or more follow (nothing read
+    /// yet: its pushes are held apart until the next pass, [`pushes`](Self::pushes)). Reads
+    /// every span; a span that is neither a cubic nor straight makes it due.
     pub(crate) fn due(
         &mut self,
         curve: &impl DrawnSpans<P, K>,
         gap: P::Scalar,
-        last: bool,
-    ) -> bool {
-        let mut due = last;
+        (h, lag): (P::Scalar, P::Scalar),
+    ) -> Due {
+        let first = self.anchors.iter().all(Option::is_none);
+        let mut due = lag <= P::Scalar::ZERO;
         for span in 0..curve.span_count().min(K) {
             let Some(now) = controls(curve, span) else {
-                return true;
+                return Due::Full;
             };
             self.read(span, now);
             due |= (self.travel[span] - self.checked[span]) * P::Scalar::from_i16(8) >= gap;
         }
-        due
+        // Half a substep short of `HELD`: a substep count's time rounds either way.
+        let held = h * (P::Scalar::from_i16(HELD) - P::Scalar::ratio(1, 2));
+        match (due, first && lag >= held) {
+            (true, _) => Due::Full,
+            (false, true) => Due::First,
+            (false, false) => Due::Not,
+        }
     }
 
     /// Notes that self-contact has just run on `curve` (reads every span).
@@ -215,6 +250,40 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
             clear: near.map_or(until, |(_, clearance)| moved + clearance),
             near: near.map(|(places, _)| places),
         });
+    }
+
+    /// Forgets the pushes of self-contact's last pass (a new one begins).
+    pub(crate) fn forget_pushes(&mut self) {
+        self.pushed = [[None; WAYS]; K];
+    }
+
+    /// Notes that self-contact pushed spans `a < b` apart at parameters `at` (in their
+    /// order): in place of the pair's last push, else in a free place of row `a`, else not
+    /// at all.
+    pub(crate) fn pushed_at(&mut self, (a, b): (usize, usize), at: (P::Scalar, P::Scalar)) {
+        let (Some(row), Ok(first), Ok(second)) =
+            (self.pushed.get_mut(a), u16::try_from(a), u16::try_from(b))
+        else {
+            return;
+        };
+        let key = (first, second);
+        let slot = row
+            .iter()
+            .position(|p| p.is_some_and(|(spans, _)| spans == key))
+            .or_else(|| row.iter().position(Option::is_none));
+        if let Some(k) = slot {
+            row[k] = Some((key, at));
+        }
+    }
+
+    /// The pairs of spans `a < b` that self-contact's last pass pushed apart, each with the
+    /// parameters of the points it pushed.
+    pub(crate) fn pushes(&self) -> impl Iterator<Item = ((usize, usize), (P::Scalar, P::Scalar))> {
+        self.pushed
+            .iter()
+            .flatten()
+            .flatten()
+            .map(|&((a, b), at)| ((usize::from(a), usize::from(b)), at))
     }
 
     /// Keeps the nearest points of spans `a < b` (both just read), found again from what

@@ -114,6 +114,7 @@ use crate::{Error, Point, Scalar};
 use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
 use drawn::{Weights, ball_clears_span, point_inv_mass, point_of, spread};
+use memory::Due;
 pub(crate) use memory::PairMemory;
 pub(crate) use step::{Plan, Reach};
 use timing::Braking;
@@ -121,6 +122,11 @@ pub(crate) use timing::Timing;
 
 /// Rounds of collider and self contacts a substep when self-contact is on.
 const SELF_ROUNDS: usize = 12;
+/// Rounds of the pass in a step's first substep that finds what the substeps until the next
+/// hold apart ([`Due::First`]): the step's last pass settles what it leaves. (With one, a
+/// pile came 2.65% of the diameter short at the closest, 1.20% with two; a whipped rope's
+/// frame took 15% fewer instructions with two than with three.)
+const FIRST_ROUNDS: usize = 2;
 
 /// The share of its inverse mass that a particle a collider pushed moves by in
 /// self-contact, in the same substep's rounds: a rope resting on a floor is held by it, so a
@@ -244,9 +250,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// that weigh in both points. On a rope's drawn curve, a step keeps what it learns from
     /// one substep to the next. A span's points move no farther than its control points, so
     /// self-contact runs in a substep only when some span has moved an eighth of the
-    /// diameter since it last ran, and always in the step's last substep: two spans cannot
-    /// close by more than a quarter of the diameter in between, let alone pass through each
-    /// other, and a pile at rest is kept off itself once a frame. A pair found apart by
+    /// diameter since it last ran, and always in the step's last substep (and in its first
+    /// when three substeps or more follow): two spans cannot close by more than a quarter of
+    /// the diameter in between, let alone pass through each other, and a pile at rest is
+    /// kept off itself once or twice a frame. In the substeps between, the points the last
+    /// pass pushed apart are pushed apart again where they came nearer, at the same places
+    /// on their spans (no search): the upper turns of a heap rest on the lower ones instead
+    /// of sinking into them under their weight until the next pass. A pair found apart by
     /// more than the diameter is not searched again while the moves of its spans' control
     /// points add up to less than that margin, and a pair found near each other in one or
     /// two places (and by the chords farther everywhere else) is followed from those places
@@ -265,16 +275,16 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
     /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
-    /// spans closer than the diameter less 2% over 10 s (0.7% to 1.1% less at the closest:
+    /// spans closer than the diameter less 2% over 10 s (0.8% to 1.2% less at the closest:
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 59 times the rope's bare step (65 µs a frame on the development machine), on
-    /// average 62 times while it falls into the pile and 154 times while it is whipped
-    /// round by its held end, 16 times lying straight on the floor, and 20 times for a
+    /// cost 49 times the rope's bare step (55 µs a frame on the development machine), on
+    /// average 58 times while it falls into the pile and 145 times while it is whipped
+    /// round by its held end, 13 times lying straight on the floor, and 21 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
-    /// particles few. Section (l) gives these for every integrator (settled in the pile 10
-    /// to 49 times its bare step, still in the spiral 4.0 to 18.8 times: the dearer the
+    /// particles few. Section (l) gives these for every integrator (settled in the pile 8
+    /// to 37 times its bare step, still in the spiral 3.9 to 20.3 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
@@ -440,7 +450,9 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 
     /// Whether self-contact is on and tested on a drawn curve of spans: a step then keeps a
-    /// [`PairMemory`] from one substep to the next.
+    /// [`PairMemory`] from one substep to the next. (Between the particles, self-contact
+    /// runs at every substep: a pass on straight segments costs less than what waiting
+    /// would leave it to undo.)
     pub(crate) fn remembers(&self) -> bool {
         let on_curve = match self.touch {
             Touch::Drawn(_) => true,
@@ -530,19 +542,7 @@ impl<'a, P: Point> Contacts<'a, P> {
             if on_curve {
                 self.resolve_spans((pos, vel, w), timing, drawn, memory);
             } else {
-                // The particles out of the colliders, the segments off each other; the
-                // colliders have the last word.
-                let mut resting = Resting([false; K]);
-                let last = self.rounds(|| {
-                    let before = *pos;
-                    self.resolve_particles(pos, vel, w, timing);
-                    drawn.rebuild(pos, (0, K - 1))?;
-                    let moved_by = resting.note(&before, pos).masses(w);
-                    self.resolve_self((&mut *pos, &mut *vel, &moved_by), timing, drawn, None)
-                });
-                if last {
-                    self.resolve_particles(pos, vel, w, timing);
-                }
+                self.resolve_segments((pos, vel, w), timing, drawn, memory);
             }
         };
         let whole = joined[..K - 1].iter().all(|&j| j);
@@ -591,30 +591,81 @@ impl<'a, P: Point> Contacts<'a, P> {
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider (see the module
-    /// docs), redrawing the spans each correction moved, then off itself if self-contact is on
-    /// and due ([`PairMemory::due`]; every substep without a memory), `lag` seconds before
-    /// the step's end.
+    /// docs), redrawing the spans each correction moved, then off itself if self-contact is
+    /// on ([`resolve_with_self`](Self::resolve_with_self)), `lag` seconds before the step's
+    /// end.
     pub(crate) fn resolve_spans<const K: usize>(
+        &self,
+        parts: (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+        timing: Timing<'_, P>,
+        curve: &mut impl DrawnSpans<P, K>,
+        memory: Option<&mut PairMemory<P, K>>,
+    ) {
+        let colliders =
+            |parts: (&mut [P; K], &mut [P; K], &[P::Scalar; K]), curve: &mut _, drawn: bool| {
+                self.resolve_colliders(parts, timing, curve, drawn)
+            };
+        self.resolve_with_self(parts, timing, curve, memory, colliders);
+    }
+
+    /// Pushes the particles of a polyline out of every collider, then its segments off each
+    /// other if self-contact is on ([`resolve_with_self`](Self::resolve_with_self)).
+    fn resolve_segments<const K: usize>(
+        &self,
+        parts: (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+        timing: Timing<'_, P>,
+        polyline: &mut Smoothed<P, K>,
+        memory: Option<&mut PairMemory<P, K>>,
+    ) {
+        let colliders = |(pos, vel, w): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+                         polyline: &mut Smoothed<P, K>,
+                         drawn: bool| {
+            self.resolve_particles(pos, vel, w, timing);
+            !drawn || polyline.rebuild(pos, (0, K - 1)).is_some()
+        };
+        self.resolve_with_self(parts, timing, polyline, memory, colliders);
+    }
+
+    /// `colliders` (what touches them pushed out of every collider; `drawn`: `curve` drawn
+    /// again after, for a reader; `false` when it left the range), then, when self-contact
+    /// is on and due ([`PairMemory::due`]; every substep without a memory), rounds of the
+    /// colliders and self-contact ([`rounds`](Self::rounds)) with the colliders' last word.
+    /// Between two such passes, what the last pushed apart is held apart
+    /// ([`hold_apart`](Self::hold_apart)).
+    fn resolve_with_self<const K: usize, C: DrawnSpans<P, K>>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         timing: Timing<'_, P>,
-        curve: &mut impl DrawnSpans<P, K>,
+        curve: &mut C,
         mut memory: Option<&mut PairMemory<P, K>>,
+        colliders: impl Fn((&mut [P; K], &mut [P; K], &[P::Scalar; K]), &mut C, bool) -> bool,
     ) {
-        let (gap, ending) = (
-            self.thickness + self.thickness,
-            timing.lag <= P::Scalar::ZERO,
-        );
-        let due = |m: &mut PairMemory<P, K>| m.due(curve, gap, ending);
-        if self.self_friction.is_none() || !memory.as_deref_mut().is_none_or(due) {
-            self.resolve_colliders((pos, vel, inv_mass), timing, curve, false);
+        let gap = self.thickness + self.thickness;
+        let due = match memory.as_deref_mut() {
+            _ if self.self_friction.is_none() => Due::Not,
+            Some(m) => m.due(curve, gap, (timing.h, timing.lag)),
+            None => Due::Full,
+        };
+        if due == Due::Not {
+            let before = *pos;
+            colliders((pos, vel, inv_mass), curve, false);
+            if let Some(memory) = memory {
+                let moved_by = Resting([false; K]).note(&before, pos).masses(inv_mass);
+                self.hold_apart((pos, vel, &moved_by), timing, curve, memory);
+            }
             return;
         }
+        if let Some(memory) = memory.as_deref_mut() {
+            memory.forget_pushes();
+        }
+        let most = match due {
+            Due::First => FIRST_ROUNDS,
+            _ => SELF_ROUNDS,
+        };
         let mut resting = Resting([false; K]);
-        let last = self.rounds(|| {
+        let last = self.rounds(most, || {
             let before = *pos;
-            let parts = (&mut *pos, &mut *vel, inv_mass);
-            if !self.resolve_colliders(parts, timing, curve, true) {
+            if !colliders((&mut *pos, &mut *vel, inv_mass), curve, true) {
                 return None;
             }
             let moved_by = resting.note(&before, pos).masses(inv_mass);
@@ -625,7 +676,7 @@ impl<'a, P: Point> Contacts<'a, P> {
         // Self-contact's last pushes may reach into a collider: the colliders have the last
         // word (a floor is never passed; two spans may stay within the rounds' tolerance).
         if last {
-            self.resolve_colliders((pos, vel, inv_mass), timing, curve, memory.is_some());
+            colliders((pos, vel, inv_mass), curve, memory.is_some());
         }
         if let Some(memory) = memory {
             memory.checked(curve);
@@ -634,14 +685,14 @@ impl<'a, P: Point> Contacts<'a, P> {
 
     /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
     /// to stop) until no two parts overlapped by more than 1/100 of the gap between them
-    /// (the tolerance of the self-contact guarantee), at most [`SELF_ROUNDS`] times: with
-    /// self-contact a pile is a stack of contacts on contacts, each push undoing part of its
-    /// neighbours'. Without self-contact, one round. Returns whether the last round pushed
-    /// two parts apart.
-    fn rounds(&self, mut round: impl FnMut() -> Option<P::Scalar>) -> bool {
+    /// (the tolerance of the self-contact guarantee), at most `most` times
+    /// ([`SELF_ROUNDS`], or [`FIRST_ROUNDS`]): with self-contact a pile is a stack of
+    /// contacts on contacts, each push undoing part of its neighbours'. Without
+    /// self-contact, one round. Returns whether the last round pushed two parts apart.
+    fn rounds(&self, most: usize, mut round: impl FnMut() -> Option<P::Scalar>) -> bool {
         let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 100);
         let mut last = None;
-        for _ in 0..SELF_ROUNDS {
+        for _ in 0..most {
             last = round();
             if last.is_none_or(|deepest| deepest <= settled) {
                 break;

@@ -93,24 +93,28 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         contacts.clear_pushes();
         let (particles, top_speed) = self.bounds_and_top_speed(dt);
         let bounds = self.drawn_bounds(contacts.touch(), particles);
+        let (speed, object) = ((top_speed, surface), (bounds, dt));
+        if !contacts.can_touch(speed, object) {
+            // Nothing within reach: the frame is a bare step's, and so is its key for sleep.
+            return match self.sleeps_under(forces, Some(0)) {
+                true => Reach::Asleep,
+                false => Reach::Apart,
+            };
+        }
         let near = match self.sleep() {
             Some(_) => contacts.still_key(bounds, dt),
             None => None,
         };
-        let (speed, object) = ((top_speed, surface), (bounds, dt));
         if self.sleeps_under(forces, near) {
-            Reach::Asleep
-        } else if contacts.can_touch(speed, object) {
-            let (rate, closing) = contacts.rate(speed, object);
-            let plan = Plan {
-                rate,
-                closing: contacts.may_wait().then_some(closing),
-                speed: top_speed,
-            };
-            Reach::Within(plan, near)
-        } else {
-            Reach::Apart(near)
+            return Reach::Asleep;
         }
+        let (rate, closing) = contacts.rate(speed, object);
+        let plan = Plan {
+            rate,
+            closing: contacts.may_wait().then_some(closing),
+            speed: top_speed,
+        };
+        Reach::Within(plan, near)
     }
 
     /// The step of a frame that `reach` found asleep or with nothing within reach: a doze,
@@ -122,12 +126,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         reach: Reach<P::Scalar>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        match reach {
-            Reach::Asleep => check_non_negative(dt, "dt").map(|dt| self.doze(dt)),
-            Reach::Apart(near) | Reach::Within(_, near) => {
-                self.step_resolving(dt, forces, (None, near), |_, _, _, _| {})
-            }
-        }
+        let near = match reach {
+            Reach::Asleep => return check_non_negative(dt, "dt").map(|dt| self.doze(dt)),
+            Reach::Apart => Some(0),
+            Reach::Within(_, near) => near,
+        };
+        self.step_resolving(dt, forces, (None, near), |_, _, _, _| {})
     }
 
     /// The step of a frame within reach of `contacts` (`plan` and `near` as
@@ -222,8 +226,8 @@ fn moved<P: Point, Sh: Shape>(
 pub(crate) enum Reach<S> {
     /// Asleep, with nothing near that moved: it stays so.
     Asleep,
-    /// Nothing within reach: a plain step (the key of what is near, for sleep).
-    Apart(Option<u64>),
+    /// Nothing within reach: a plain step, keyed for sleep as one with no contacts.
+    Apart,
     /// Something within reach: contacts as the plan asks (the key of what is near, for
     /// sleep).
     Within(Plan<S>, Option<u64>),

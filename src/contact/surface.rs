@@ -2,7 +2,7 @@
 //! collider, pushed out through the particles' weights in it.
 
 use super::drawn::{SurfacePoint, deepest_in_cell, point_inv_mass, spread};
-use super::{Contacts, Timing, Touch};
+use super::{Contacts, SELF_ROUNDS, Timing, Touch};
 use crate::curves::smooth::Smoothing;
 use crate::{Point, Scalar};
 
@@ -42,7 +42,7 @@ impl<P: Point> Contacts<'_, P> {
                 _ => P::Scalar::ONE,
             },
         );
-        self.rounds(|| {
+        self.rounds(SELF_ROUNDS, || {
             if on_surface {
                 self.surface_colliders::<U, V>(
                     (&mut *pos, &mut *vel, inv_mass),

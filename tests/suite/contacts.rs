@@ -733,7 +733,7 @@ fn segment_distance((p0, p1): (Vec3<f64>, Vec3<f64>), (q0, q1): (Vec3<f64>, Vec3
 /// and from starts whose helix is 0.1 µm, 0.1 mm and 0.2 mm wider along x and 0.1 mm
 /// narrower (a pile is chaotic: each start meets other contacts). With self-contact, no two
 /// spans of its drawn curve that are not neighbours come closer than its diameter less 2%
-/// over 10 s (measured 0.9%, 0.9%, 1.0%, 1.1% and 0.7% less at the closest; before the pair
+/// over 10 s (measured 0.8%, 0.9%, 0.9%, 1.1% and 1.2% less at the closest; before the pair
 /// search measured the chords between its samples, the last four starts brought two spans
 /// to 76%, 61%, 9% and 0.1% of the diameter), and every start stays on the floor: no
 /// particle more than 0.1% of its radius into it (the colliders have the last word after
