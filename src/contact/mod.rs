@@ -114,49 +114,10 @@ use crate::{Error, Point, Scalar};
 use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
 use drawn::{Weights, ball_clears_span, point_inv_mass, point_of, spread};
-use memory::Due;
 pub(crate) use memory::PairMemory;
 pub(crate) use step::{Plan, Reach};
 use timing::Braking;
 pub(crate) use timing::Timing;
-
-/// Rounds of collider and self contacts a substep when self-contact is on.
-const SELF_ROUNDS: usize = 12;
-/// Rounds of the pass in a step's first substep that finds what the substeps until the next
-/// hold apart ([`Due::First`]): the step's last pass settles what it leaves. (With one, a
-/// pile came 2.65% of the diameter short at the closest, 1.20% with two; a whipped rope's
-/// frame took 15% fewer instructions with two than with three.)
-const FIRST_ROUNDS: usize = 2;
-
-/// The share of its inverse mass that a particle a collider pushed moves by in
-/// self-contact, in the same substep's rounds: a rope resting on a floor is held by it, so a
-/// span landing on it moves it less (mass scaling, as in shock propagation), and a round no
-/// longer pushes the bottom of a heap into the floor for the next to push it out again:
-/// fewer rounds settle a pile (`docs/summary.md`, section (g)).
-const RESTING_SHARE: (u32, u32) = (3, 10);
-
-/// The particles a collider pushed in a substep's rounds so far.
-struct Resting<const K: usize>([bool; K]);
-
-impl<const K: usize> Resting<K> {
-    /// Adds the particles that moved from `before` to `now` (the colliders' round).
-    fn note<P: Point>(&mut self, before: &[P; K], now: &[P; K]) -> &Self {
-        for ((rests, a), b) in self.0.iter_mut().zip(before).zip(now) {
-            *rests |= a != b;
-        }
-        self
-    }
-
-    /// The inverse masses self-contact moves the particles by: [`RESTING_SHARE`] of
-    /// `inv_mass` for those resting on a collider.
-    fn masses<S: Scalar>(&self, inv_mass: &[S; K]) -> [S; K] {
-        let share = S::ratio(RESTING_SHARE.0, RESTING_SHARE.1);
-        core::array::from_fn(|i| match self.0[i] {
-            true => inv_mass[i] * share,
-            false => inv_mass[i],
-        })
-    }
-}
 
 /// Where contacts are tested.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -624,81 +585,6 @@ impl<'a, P: Point> Contacts<'a, P> {
             !drawn || polyline.rebuild(pos, (0, K - 1)).is_some()
         };
         self.resolve_with_self(parts, timing, polyline, memory, colliders);
-    }
-
-    /// `colliders` (what touches them pushed out of every collider; `drawn`: `curve` drawn
-    /// again after, for a reader; `false` when it left the range), then, when self-contact
-    /// is on and due ([`PairMemory::due`]; every substep without a memory), rounds of the
-    /// colliders and self-contact ([`rounds`](Self::rounds)) with the colliders' last word.
-    /// Between two such passes, what the last pushed apart is held apart
-    /// ([`hold_apart`](Self::hold_apart)).
-    fn resolve_with_self<const K: usize, C: DrawnSpans<P, K>>(
-        &self,
-        (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
-        timing: Timing<'_, P>,
-        curve: &mut C,
-        mut memory: Option<&mut PairMemory<P, K>>,
-        colliders: impl Fn((&mut [P; K], &mut [P; K], &[P::Scalar; K]), &mut C, bool) -> bool,
-    ) {
-        let gap = self.thickness + self.thickness;
-        let due = match memory.as_deref_mut() {
-            _ if self.self_friction.is_none() => Due::Not,
-            Some(m) => m.due(curve, gap, (timing.h, timing.lag)),
-            None => Due::Full,
-        };
-        if due == Due::Not {
-            let before = *pos;
-            colliders((pos, vel, inv_mass), curve, false);
-            if let Some(memory) = memory {
-                let moved_by = Resting([false; K]).note(&before, pos).masses(inv_mass);
-                self.hold_apart((pos, vel, &moved_by), timing, curve, memory);
-            }
-            return;
-        }
-        if let Some(memory) = memory.as_deref_mut() {
-            memory.forget_pushes();
-        }
-        let most = match due {
-            Due::First => FIRST_ROUNDS,
-            _ => SELF_ROUNDS,
-        };
-        let mut resting = Resting([false; K]);
-        let last = self.rounds(most, || {
-            let before = *pos;
-            if !colliders((&mut *pos, &mut *vel, inv_mass), curve, true) {
-                return None;
-            }
-            let moved_by = resting.note(&before, pos).masses(inv_mass);
-            let memory = memory.as_deref_mut();
-            let parts = (&mut *pos, &mut *vel, &moved_by);
-            self.resolve_self(parts, timing, curve, memory)
-        });
-        // Self-contact's last pushes may reach into a collider: the colliders have the last
-        // word (a floor is never passed; two spans may stay within the rounds' tolerance).
-        if last {
-            colliders((pos, vel, inv_mass), curve, memory.is_some());
-        }
-        if let Some(memory) = memory {
-            memory.checked(curve);
-        }
-    }
-
-    /// Runs `round` (the colliders, then self-contact: the deepest overlap it met, or `None`
-    /// to stop) until no two parts overlapped by more than 1/100 of the gap between them
-    /// (the tolerance of the self-contact guarantee), at most `most` times
-    /// ([`SELF_ROUNDS`], or [`FIRST_ROUNDS`]): with self-contact a pile is a stack of
-    /// contacts on contacts, each push undoing part of its neighbours'. Without
-    /// self-contact, one round. Returns whether the last round pushed two parts apart.
-    fn rounds(&self, most: usize, mut round: impl FnMut() -> Option<P::Scalar>) -> bool {
-        let settled = (self.thickness + self.thickness) * P::Scalar::ratio(1, 100);
-        let mut last = None;
-        for _ in 0..most {
-            last = round();
-            if last.is_none_or(|deepest| deepest <= settled) {
-                break;
-            }
-        }
-        last.is_some_and(|deepest| deepest > P::Scalar::ZERO)
     }
 
     /// Pushes a curve of spans drawn through `pos` out of every collider. A correction

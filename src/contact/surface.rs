@@ -2,7 +2,8 @@
 //! collider, pushed out through the particles' weights in it.
 
 use super::drawn::{SurfacePoint, deepest_in_cell, point_inv_mass, spread};
-use super::{Contacts, SELF_ROUNDS, Timing, Touch};
+use super::itself::SELF_ROUNDS;
+use super::{Contacts, Timing, Touch};
 use crate::curves::smooth::Smoothing;
 use crate::{Point, Scalar};
 
