@@ -269,9 +269,11 @@ pub fn run(run: &mut Run) {
             )
             .replace(" (fastest NaN×;", " (mean of its frames;"),
             state.both <= target * state.step,
-            "the floor's contacts run at every substep, self-contact once a span moved an \
-             eighth of the diameter (and in the first and last, holding apart in between \
-             what the first pushed apart), in rounds with the floor until no \
+            "the floor's contacts run at every substep while self-contact holds two spans \
+             apart (else as often as keeps two parts from closing by half the thickness), \
+             self-contact once a span moved an eighth of the diameter (and in the first and \
+             last, holding apart in between what the first pushed apart), in rounds with the \
+             floor until no \
              overlap is over 1% of the diameter (a pile is contacts stacked on contacts); each \
              round meets each pair of spans whose boxes meet (searched by exact chord \
              distances then Newton steps, followed by Newton steps from where the step found \

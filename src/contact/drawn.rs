@@ -105,11 +105,9 @@ impl<P: Point, const K: usize> DrawnSpans<P, K> for Smoothed<P, K> {
 /// A drawn point's particle weights, only those that are not zero (at most 4 for a cubic
 /// span's point, 2 for a segment's, all `K` for one Bézier's or a natural spline's), in
 /// rising particle order: what reads and moves the point costs that many particles, not `K`.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 pub(super) struct Weights<S, const K: usize> {
-    index: [usize; K],
-    weight: [S; K],
-    len: usize,
+    entries: heapless::Vec<(usize, S), K>,
 }
 
 impl<S: Scalar, const K: usize> Weights<S, K> {
@@ -154,9 +152,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
     /// No particle weighs in.
     fn none() -> Self {
         Weights {
-            index: [0; K],
-            weight: [S::ZERO; K],
-            len: 0,
+            entries: heapless::Vec::new(),
         }
     }
 
@@ -190,26 +186,23 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
 
     /// Appends particle `i` at weight `x` unless it is zero (`i` past the last).
     fn push(&mut self, i: usize, x: S) {
-        if x != S::ZERO && self.len < K {
-            (self.index[self.len], self.weight[self.len]) = (i, x);
-            self.len += 1;
+        if x != S::ZERO {
+            // At most `K` particles weigh in: a push past them has none to add.
+            let _ = self.entries.push((i, x));
         }
     }
 
     /// The first and the last particle that weigh in the point (`(1, 0)` when none does).
     pub(super) fn ends(&self) -> (usize, usize) {
-        match self.len {
-            0 => (1, 0),
-            n => (self.index[0], self.index[n - 1]),
+        match (self.entries.first(), self.entries.last()) {
+            (Some(&(first, _)), Some(&(last, _))) => (first, last),
+            _ => (1, 0),
         }
     }
 
     /// `(particle, weight)` for each weight that is not zero.
     pub(super) fn entries(&self) -> impl Iterator<Item = (usize, S)> + Clone + '_ {
-        self.index[..self.len]
-            .iter()
-            .zip(&self.weight[..self.len])
-            .map(|(&i, &x)| (i, x))
+        self.entries.iter().copied()
     }
 }
 

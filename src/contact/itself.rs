@@ -50,19 +50,25 @@ impl<const K: usize> Resting<K> {
 }
 
 impl<P: Point> Contacts<'_, P> {
-    /// `colliders` (what touches them pushed out of every collider; `drawn`: `curve` drawn
-    /// again after, for a reader; `false` when it left the range), then, when self-contact
-    /// is on and due ([`PairMemory::due`]; every substep without a memory), rounds of the
-    /// colliders and self-contact ([`rounds`](Self::rounds)) with the colliders' last word.
-    /// Between two such passes, what the last pushed apart is held apart
-    /// ([`hold_apart`](Self::hold_apart)).
+    /// `colliders` (what touches them pushed out of every collider at a timing; `drawn`:
+    /// `curve` drawn again after, for a reader; `false` when it left the range), then, when
+    /// self-contact is on and due ([`PairMemory::due`]; every substep without a memory),
+    /// rounds of the colliders and self-contact ([`rounds`](Self::rounds)) with the
+    /// colliders' last word; friction takes back what slid since the contacts last ran in
+    /// the first round only ([`Timing::again`]). Between two such passes, what the last
+    /// pushed apart is held apart ([`hold_apart`](Self::hold_apart)).
     pub(super) fn resolve_with_self<const K: usize, C: DrawnSpans<P, K>>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
         timing: Timing<'_, P>,
         curve: &mut C,
         mut memory: Option<&mut PairMemory<P, K>>,
-        colliders: impl Fn((&mut [P; K], &mut [P; K], &[P::Scalar; K]), &mut C, bool) -> bool,
+        colliders: impl Fn(
+            (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+            &mut C,
+            Timing<'_, P>,
+            bool,
+        ) -> bool,
     ) {
         let gap = self.thickness + self.thickness;
         let due = match memory.as_deref_mut() {
@@ -72,7 +78,7 @@ impl<P: Point> Contacts<'_, P> {
         };
         if due == Due::Not {
             let before = *pos;
-            colliders((pos, vel, inv_mass), curve, false);
+            colliders((pos, vel, inv_mass), curve, timing, false);
             if let Some(memory) = memory {
                 let moved_by = Resting([false; K]).note(&before, pos).masses(inv_mass);
                 self.hold_apart((pos, vel, &moved_by), timing, curve, memory);
@@ -87,20 +93,28 @@ impl<P: Point> Contacts<'_, P> {
             _ => SELF_ROUNDS,
         };
         let mut resting = Resting([false; K]);
+        let mut round = timing;
         let last = self.rounds(most, || {
             let before = *pos;
-            if !colliders((&mut *pos, &mut *vel, inv_mass), curve, true) {
+            if !colliders((&mut *pos, &mut *vel, inv_mass), curve, round, true) {
                 return None;
             }
             let moved_by = resting.note(&before, pos).masses(inv_mass);
             let memory = memory.as_deref_mut();
             let parts = (&mut *pos, &mut *vel, &moved_by);
-            self.resolve_self(parts, timing, curve, memory)
+            let deepest = self.resolve_self(parts, round, curve, memory);
+            round = timing.again();
+            deepest
         });
         // Self-contact's last pushes may reach into a collider: the colliders have the last
         // word (a floor is never passed; two spans may stay within the rounds' tolerance).
         if last {
-            colliders((pos, vel, inv_mass), curve, memory.is_some());
+            colliders(
+                (pos, vel, inv_mass),
+                curve,
+                timing.again(),
+                memory.is_some(),
+            );
         }
         if let Some(memory) = memory {
             memory.checked(curve);
@@ -524,9 +538,10 @@ fn parting<P: Point>(
     }
     let push = -vn;
     let slide = relative - normal * vn;
-    let brake = coulomb(slide, (friction * push, friction * push));
+    let limits = (friction * push, friction * push);
+    let brake = coulomb(slide, limits);
     (
-        dx - braking().take_back(slide, brake, normal),
+        dx - braking().take_back((slide, brake), normal, limits),
         normal * push - brake,
     )
 }

@@ -277,6 +277,12 @@ impl<P: Point, const K: usize> PairMemory<P, K> {
         }
     }
 
+    /// Whether self-contact's last pass pushed two spans apart: the step then runs its
+    /// contacts at every substep, to hold them apart ([`pushes`](Self::pushes)).
+    pub(crate) fn holds(&self) -> bool {
+        self.pushes().next().is_some()
+    }
+
     /// The pairs of spans `a < b` that self-contact's last pass pushed apart, each with the
     /// parameters of the points it pushed.
     pub(crate) fn pushes(&self) -> impl Iterator<Item = ((usize, usize), (P::Scalar, P::Scalar))> {

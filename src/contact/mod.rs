@@ -46,14 +46,20 @@
 //! collider it can reach (its centre line then never goes into the collider), judged as the
 //! substeps are (below), and at the step's end. They run sooner when a particle gets faster
 //! than that judgement allowed for, and at every substep with a thickness of 0, with
-//! self-contact, on a natural spline or with a collider that has a mass. A 16-particle
-//! rope lying on a floor, its springs asking for 7 substeps, meets the floor once a frame:
-//! the floor adds 2.10 times its bare step, where it added 12.8 times when the contacts ran
-//! at every substep (`docs/summary.md`, targets). After waited substeps, friction that
-//! holds a point still takes back all it slid since the contacts last ran (its particles'
-//! moves, weighted as in the point), so that a rope on a slope stays put as it did; kinetic
-//! friction takes back its braking times `h (n + 1) / 2` after `n` substeps of `h`, what it
-//! would have taken back of a steady slide at the end of each.
+//! self-contact (on a rope's drawn curve, only while its last pass of self-contact pushed
+//! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
+//! closing by more than the thickness between runs), on a natural spline or with a collider
+//! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
+//! meets the floor once a frame: the floor adds 2.15 times its bare step, where it added
+//! 12.8 times when the contacts ran at every substep (`docs/summary.md`, targets). After
+//! waited substeps, friction that holds a point still takes back all it slid since the
+//! contacts last ran (its particles' moves, weighted as in the point), so that a rope on a
+//! slope stays put as it did, but no more than its static limit could have stopped over
+//! that time (`h (n + 1) / 2` after `n` substeps of `h`); a point that slid farther (a
+//! direct solver's links pulled it across the floor) is braked as kinetic friction would
+//! brake it over that time. Kinetic friction takes back its braking times that time, what
+//! it would have taken back of a steady slide at the end of each substep. Rounds of
+//! contacts after the first in the same substep take back nothing more.
 //!
 //! **Self-contact.** [`Contacts::with_self_contact`] also keeps a rope's curve or a cloth's
 //! surface off itself: spans (cells) that are not neighbours stay a diameter apart, found by
@@ -217,7 +223,12 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// kept off itself once or twice a frame. In the substeps between, the points the last
     /// pass pushed apart are pushed apart again where they came nearer, at the same places
     /// on their spans (no search): the upper turns of a heap rest on the lower ones instead
-    /// of sinking into them under their weight until the next pass. A pair found apart by
+    /// of sinking into them under their weight until the next pass. A step whose last pass
+    /// pushed nothing apart (a rope lying straight or in a loose spiral) lets its contacts
+    /// wait as a step without self-contact does, for no longer than two of its parts
+    /// meeting head on could close by the thickness: a 24-particle rope still in a flat
+    /// spiral costs 47% fewer instructions a frame than when its floor ran at every substep,
+    /// lying straight 60% fewer (callgrind, on copies of the evaluation's scenes). A pair found apart by
     /// more than the diameter is not searched again while the moves of its spans' control
     /// points add up to less than that margin, and a pair found near each other in one or
     /// two places (and by the chords farther everywhere else) is followed from those places
@@ -236,16 +247,16 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Measured (`tests/suite/contacts.rs`; the evaluation's section (g), `cargo run --release
     /// -p dunas-evaluate -- --only contacts`): a 16-particle 3D rope falling into a pile on a
     /// floor, dropped from five slightly different starts (a pile is chaotic), never has two
-    /// spans closer than the diameter less 2% over 10 s (0.8% to 1.2% less at the closest:
+    /// spans closer than the diameter less 2% over 10 s (0.9% to 1.2% less at the closest:
     /// the rounds stop once no overlap is over 1%, and a push later in a round can undo part
     /// of an earlier one) and never a particle into the floor; settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 49 times the rope's bare step (55 µs a frame on the development machine), on
-    /// average 58 times while it falls into the pile and 145 times while it is whipped
-    /// round by its held end, 13 times lying straight on the floor, and 21 times for a
+    /// cost 39 times the rope's bare step (62 µs a frame on the development machine), on
+    /// average 46 times while it falls into the pile and 116 times while it is whipped
+    /// round by its held end, 6 times lying straight on the floor, and 9 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
-    /// particles few. Section (l) gives these for every integrator (settled in the pile 8
-    /// to 37 times its bare step, still in the spiral 3.9 to 20.3 times: the dearer the
+    /// particles few. Section (l) gives these for every integrator (settled in the pile 3
+    /// to 29 times its bare step, still in the spiral 1.7 to 9.5 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
@@ -563,9 +574,10 @@ impl<'a, P: Point> Contacts<'a, P> {
         memory: Option<&mut PairMemory<P, K>>,
     ) {
         let colliders =
-            |parts: (&mut [P; K], &mut [P; K], &[P::Scalar; K]), curve: &mut _, drawn: bool| {
-                self.resolve_colliders(parts, timing, curve, drawn)
-            };
+            |parts: (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
+             curve: &mut _,
+             timing: Timing<'_, P>,
+             drawn: bool| { self.resolve_colliders(parts, timing, curve, drawn) };
         self.resolve_with_self(parts, timing, curve, memory, colliders);
     }
 
@@ -580,6 +592,7 @@ impl<'a, P: Point> Contacts<'a, P> {
     ) {
         let colliders = |(pos, vel, w): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
                          polyline: &mut Smoothed<P, K>,
+                         timing: Timing<'_, P>,
                          drawn: bool| {
             self.resolve_particles(pos, vel, w, timing);
             !drawn || polyline.rebuild(pos, (0, K - 1)).is_some()
@@ -692,8 +705,10 @@ impl<'a, P: Point> Contacts<'a, P> {
             let push = -vn * (P::Scalar::ONE + collider.restitution());
             let (stick, kinetic) = collider.friction();
             let slide = relative - n * vn;
-            let brake = coulomb(slide, (stick * push, kinetic * push));
-            (dx, dv) = (dx - braking().take_back(slide, brake, n), n * push - brake);
+            let limits = (stick * push, kinetic * push);
+            let brake = coulomb(slide, limits);
+            let back = braking().take_back((slide, brake), n, limits);
+            (dx, dv) = (dx - back, n * push - brake);
         }
         if body_inv_mass > zero {
             let share = w / (w + body_inv_mass);

@@ -36,7 +36,10 @@ impl<P: Point> Contacts<'_, P> {
     /// surface's. `object` holds what is drawn at the frame's start: a collider that is not
     /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps. Also the
     /// fastest a point can close on a collider it can reach (its speed and the collider's;
-    /// 0 when the thickness is 0).
+    /// 0 when the thickness is 0), with self-contact at least twice its points' speed (two
+    /// parts of the rope meeting head on): contacts that wait no longer than that closing
+    /// takes to cover the thickness let no point close on a collider or on another part by
+    /// more than the thickness between two runs.
     pub(crate) fn rate(
         &self,
         (speed, surface): (P::Scalar, bool),
@@ -57,26 +60,29 @@ impl<P: Point> Contacts<'_, P> {
         });
         // Two parts of a rope can meet head on.
         if self.self_friction.is_some() {
-            (colliders.max((reach + reach) / self.thickness), closing)
+            let apart = reach + reach;
+            (colliders.max(apart / self.thickness), closing.max(apart))
         } else {
             (colliders, closing)
         }
     }
 
     /// Whether the contacts may skip substeps ([`due`](Self::due)). They run at every
-    /// substep with a thickness of 0, with self-contact (a pile's stacked contacts, with a
-    /// frame's weight on them, take more rounds than they have), on a natural spline (each
+    /// substep with a thickness of 0, with self-contact unless `remembering` (a step that
+    /// keeps a [`PairMemory`](super::memory::PairMemory), which runs them at every substep
+    /// only while it holds two parts apart: a pile's stacked contacts, with a frame's weight
+    /// on them, take more rounds than they have), on a natural spline (each
     /// drawn point weighs in every particle, so that a push anywhere moves it all, and a
     /// frame's pushes take more than one pass) and with a body that has a mass (a two-way
     /// contact's pushes are each substep's).
-    pub(crate) fn may_wait(&self) -> bool {
+    pub(crate) fn may_wait(&self, remembering: bool) -> bool {
         let natural = matches!(
             self.touch,
             Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline)
         );
         self.thickness > P::Scalar::ZERO
             && !natural
-            && self.self_friction.is_none()
+            && (self.self_friction.is_none() || remembering)
             && !self
                 .colliders
                 .iter()

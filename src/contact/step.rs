@@ -111,7 +111,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         let (rate, closing) = contacts.rate(speed, object);
         let plan = Plan {
             rate,
-            closing: contacts.may_wait().then_some(closing),
+            closing: (contacts.may_wait(false).then_some(closing), closing),
             speed: top_speed,
         };
         Reach::Within(plan, near)
@@ -138,29 +138,31 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// [`reach`](Self::reach) found them): its substeps end with `resolve` (the contacts)
     /// when they are [`due`](Contacts::due), at the step's end and before a point can close
     /// on a collider by more than the thickness, or at every substep when they may not wait
-    /// ([`may_wait`](Contacts::may_wait)); reporting impulses when `contacts` asks for them.
-    /// When they may wait, costs at a substep's end a pass over the velocities when they are
-    /// not due, and a copy of the positions when they are (what friction takes back after
-    /// waited substeps is what the particles slid since).
+    /// ([`may_wait`](Contacts::may_wait)), and at the substep after one where `resolve`
+    /// returned `true` (it holds parts apart); reporting impulses when `contacts` asks for
+    /// them. When they may wait, costs at a substep's end a pass over the velocities when
+    /// they are not due, and a copy of the positions when they are (what friction takes
+    /// back after waited substeps is what the particles slid since).
     pub(crate) fn step_within<F: ForceField<P>>(
         &mut self,
         dt: P::Scalar,
         forces: F,
         contacts: &Contacts<'_, P>,
         (plan, near): (Plan<P::Scalar>, Option<u64>),
-        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>),
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>) -> bool,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         // Where the particles were when the contacts last ran, when that was within this
         // frame (at its start, the step's own copy serves).
         let mut since: Option<Sh::PerParticle<P>> = None;
         let mut waited = Waited::default();
+        let mut holding = false;
         let resolve = |state: &mut State<P, Sh>,
                        w: &Sh::PerParticle<P::Scalar>,
                        (h, lag): (P::Scalar, P::Scalar),
                        start: &Sh::PerParticle<P>| {
             let slid: Sh::PerParticle<P>;
             let mut timing = Timing::substep((h, lag));
-            match plan.closing {
+            match plan.closing.0 {
                 None => contacts.advance_bodies(h),
                 Some(closing) => {
                     // A call with no time passing is a round after a substep's contacts.
@@ -168,7 +170,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                         waited.time += h;
                         waited.count = waited.count.saturating_add(1);
                         let v = Sh::flat(&state.vel);
-                        if !contacts.due((h, lag), &waited, (closing, plan.speed), v) {
+                        if !holding && !contacts.due((h, lag), &waited, (closing, plan.speed), v) {
                             return;
                         }
                     }
@@ -180,8 +182,8 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                     waited = Waited::default();
                 }
             }
-            resolve(state, w, timing);
-            if plan.closing.is_some() && lag > P::Scalar::ZERO {
+            holding = resolve(state, w, timing);
+            if plan.closing.0.is_some() && lag > P::Scalar::ZERO {
                 since = Some(state.pos);
             }
         };
@@ -198,10 +200,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         contacts: &Contacts<'_, P>,
         surface: bool,
-        resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>),
+        mut resolve: impl FnMut(&mut State<P, Sh>, &Sh::PerParticle<P::Scalar>, Timing<'_, P>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         match self.reach(dt, &forces, contacts, surface) {
             Reach::Within(plan, near) => {
+                let resolve = |state: &mut _, w: &_, timing: Timing<'_, P>| {
+                    resolve(state, w, timing);
+                    false
+                };
                 self.step_within(dt, forces, contacts, (plan, near), resolve)
             }
             apart => self.step_apart(dt, forces, apart),
@@ -238,10 +244,24 @@ pub(crate) enum Reach<S> {
 pub(crate) struct Plan<S> {
     /// Substeps a second at least ([`Contacts::rate`]).
     rate: S,
-    /// The fastest a point can close on a collider it can reach (m/s), when the contacts
-    /// may wait ([`Contacts::may_wait`]; `None`: they run at every substep).
-    closing: Option<S>,
+    /// The fastest a point can close on a collider it can reach, or with self-contact on
+    /// another part (m/s), when the contacts may wait ([`Contacts::may_wait`]; `None`: they
+    /// run at every substep); and that rate whether they may or not.
+    closing: (Option<S>, S),
     /// The particles' top speed the rate holds for (m/s), gravity's gain over the frame
     /// included.
     speed: S,
+}
+
+impl<S: Copy> Plan<S> {
+    /// The plan of a step that keeps a [`PairMemory`](super::memory::PairMemory) for
+    /// self-contact: its contacts may wait ([`Contacts::may_wait`] with `remembering`)
+    /// while it holds no two parts apart.
+    pub(crate) fn remembering<P: Point<Scalar = S>>(self, contacts: &Contacts<'_, P>) -> Self {
+        let closing = contacts.may_wait(true).then_some(self.closing.1);
+        Plan {
+            closing: (closing, self.closing.1),
+            ..self
+        }
+    }
 }

@@ -41,6 +41,15 @@ impl<'a, P: Point> Timing<'a, P> {
         }
     }
 
+    /// The same substep's contacts in a round after the first: what slid since the
+    /// contacts last ran was taken back once, by the first.
+    pub(crate) fn again(self) -> Self {
+        Timing {
+            waited: None,
+            ..self
+        }
+    }
+
     /// The same timing for a run of particles whose motion since the contacts last ran is
     /// `slid` (a cut rope's piece), when one was waited for.
     pub(crate) fn for_run<'b>(&self, slid: &'b [P]) -> Timing<'b, P> {
@@ -101,13 +110,33 @@ pub(super) struct Braking<P: Point> {
 
 impl<P: Point> Braking<P> {
     /// The position change that takes back the sliding that `brake` stops of `slide` (the
-    /// point's velocity across `normal`): static friction (`brake == slide`) takes back all
-    /// the point slid across `normal`; kinetic friction, and every contact of a substep
-    /// right after the last, the braking times the time.
+    /// point's velocity across `normal`), the friction's limits `(static, kinetic)` (m/s of
+    /// braking): static friction (`brake == slide`) takes back all the point slid across
+    /// `normal` since the contacts last ran, when that is no more than the static limit
+    /// times the time (a point that slid at a steady rate within the limit: a rope on a
+    /// slope stays put); a point that slid farther, although it slides slowly now (a
+    /// solve's links pulled it across the floor), as far as the kinetic limit times the time
+    /// along it. Kinetic friction, and every contact of a substep right after the last, the
+    /// braking times the time.
     #[inline]
-    pub(super) fn take_back(&self, slide: P, brake: P, normal: P) -> P {
+    pub(super) fn take_back(
+        &self,
+        (slide, brake): (P, P),
+        normal: P,
+        (stick, kinetic): (P::Scalar, P::Scalar),
+    ) -> P {
         match self.slid {
-            Some(slid) if brake == slide => slid - normal * slid.dot(normal),
+            Some(slid) if brake == slide => {
+                let across = slid - normal * slid.dot(normal);
+                if across.shorter_than(stick * self.time) {
+                    return across;
+                }
+                let length = across.length();
+                match length > P::Scalar::ZERO {
+                    true => across * (kinetic * self.time / length),
+                    false => P::default(),
+                }
+            }
             _ => brake * self.time,
         }
     }
@@ -150,7 +179,8 @@ mod tests {
     use crate::Vec2;
 
     /// Static friction after waited substeps takes back all the point slid across the
-    /// normal; kinetic friction the braking times `h (n + 1) / 2`; right after the last
+    /// normal, up to its limit times `h (n + 1) / 2` (beyond, the kinetic limit times that
+    /// along it); kinetic friction the braking times `h (n + 1) / 2`; right after the last
     /// contacts, the braking times `h`.
     #[test]
     fn friction_takes_back_what_it_stops() {
@@ -163,18 +193,25 @@ mod tests {
         };
         let braking = waited.braking([(0, 0.5), (1, 0.5)], Vec2::new(0.1, 0.0));
         // The point slid (0.2, -0.1); the body moved 0.1 · 0.03 along x.
-        let stuck = braking.take_back(Vec2::new(2.0, 0.0), Vec2::new(2.0, 0.0), normal);
+        let slide = Vec2::new(2.0, 0.0);
+        // Within the static limit (12 m/s over 0.02 s: 0.24 m), all of it.
+        let stuck = braking.take_back((slide, slide), normal, (12.0, 6.0));
         assert!(
             (stuck - Vec2::new(0.2 - 0.003, 0.0)).length() < 1e-15,
             "{stuck:?}"
         );
-        let sliding = braking.take_back(Vec2::new(2.0, 0.0), Vec2::new(1.0, 0.0), normal);
+        // Slid farther than the static limit allows (2 m/s over 0.02 s): the kinetic limit
+        // (1 m/s) times the time along it.
+        let far = braking.take_back((slide, slide), normal, (2.0, 1.0));
+        assert!((far - Vec2::new(0.02, 0.0)).length() < 1e-15, "{far:?}");
+        let braked = Vec2::new(1.0, 0.0);
+        let sliding = braking.take_back((slide, braked), normal, (1.0, 1.0));
         assert!(
             (sliding - Vec2::new(0.02, 0.0)).length() < 1e-15,
             "{sliding:?}"
         );
         let next = Timing::substep((0.01, 0.0)).braking([(0, 1.0)], Vec2::default());
-        let slide = Vec2::new(2.0, 0.0);
-        assert_eq!(next.take_back(slide, slide, normal), Vec2::new(0.02, 0.0));
+        let back = next.take_back((slide, slide), normal, (12.0, 6.0));
+        assert_eq!(back, Vec2::new(0.02, 0.0));
     }
 }

@@ -276,6 +276,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         reach: (Plan<P::Scalar>, Option<u64>),
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let mut memory = PairMemory::new();
+        let (plan, near) = reach;
+        let reach = (plan.remembering(contacts), near);
         self.step_curve(dt, forces, contacts, reach, Some(&mut memory))
     }
 
@@ -296,7 +298,8 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         self.system
             .step_within(dt, forces, contacts, reach, |state, inv_mass, times| {
                 let parts = (&mut state.pos, &mut state.vel, inv_mass);
-                contacts.resolve_curve(parts, times, &joined, memory.as_deref_mut())
+                contacts.resolve_curve(parts, times, &joined, memory.as_deref_mut());
+                memory.as_deref().is_some_and(PairMemory::holds)
             })
     }
 
