@@ -782,6 +782,37 @@ fn segment_distance((p0, p1): (Vec3<f64>, Vec3<f64>), (q0, q1): (Vec3<f64>, Vec3
     best
 }
 
+/// The 16-particle 3D rope of the self-contact tests (3 m, 0.6 kg, 3 000 N/m damped 2 N·s/m,
+/// a drag of 0.3/s) from `start` (held) to `end`, bent into a helix 1 cm across, `wider`
+/// more along x (so that it does not move in a plane), and the floor under it (friction 0.5
+/// static, 0.4 kinetic).
+fn helix_over_a_floor(
+    (start, end): (Vec3<f64>, Vec3<f64>),
+    wider: f64,
+) -> (Rope<Vec3<f64>, 16>, [Collider<Vec3<f64>>; 1]) {
+    let settings = Settings {
+        gravity: Vec3::new(0.0, -9.81, 0.0),
+        damping: 0.3,
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: 3000.0,
+        damping: 2.0,
+    };
+    let mut rope: Rope<Vec3<f64>, 16> = Rope::new(start, end, 0.6, material, settings).unwrap();
+    for i in 0..16 {
+        let a = i as f64 * 0.9;
+        let p = rope.positions()[i] + Vec3::new((0.01 + wider) * a.cos(), 0.0, 0.01 * a.sin());
+        rope.set_position(i, p).unwrap();
+    }
+    let floor = [
+        Collider::half_space(Vec3::default(), Vec3::new(0.0, 1.0, 0.0))
+            .and_then(|c| c.with_friction(0.5, 0.4))
+            .unwrap(),
+    ];
+    (rope, floor)
+}
+
 /// A 3D rope of 16 particles (3 m, 0.6 kg, 1 cm thick), nearly upright, its lower end held
 /// 10 cm above a floor: the rest falls and buckles into a pile round it, from its own start
 /// and from starts whose helix is 0.1 µm, 0.1 mm and 0.2 mm wider along x and 0.1 mm
@@ -798,31 +829,9 @@ fn a_rope_dropped_in_a_pile_never_passes_through_itself() {
     const RADIUS: f64 = 0.005;
     const PER_SPAN: usize = 32;
     let drop = |self_contact: bool, wider: f64| {
-        let settings = Settings {
-            gravity: Vec3::new(0.0, -9.81, 0.0),
-            damping: 0.3,
-            ..Settings::default()
-        };
-        let material = Material {
-            stiffness: 3000.0,
-            damping: 2.0,
-        };
         // Nearly upright, leaning a little in x and z so that it buckles into a pile.
         let (top, bottom) = (Vec3::new(0.12, 3.1, 0.07), Vec3::new(0.0, 0.1, 0.0));
-        let mut rope: Rope<Vec3<f64>, 16> =
-            Rope::new(bottom, top, 0.6, material, settings).unwrap();
-        for i in 0..16 {
-            // A slight helix, so that the fall is not planar.
-            let a = i as f64 * 0.9;
-            let p = rope.positions()[i] + Vec3::new((0.01 + wider) * a.cos(), 0.0, 0.01 * a.sin());
-            rope.set_position(i, p).unwrap();
-        }
-        let floor = [
-            Collider::half_space(Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0))
-                .unwrap()
-                .with_friction(0.5, 0.4)
-                .unwrap(),
-        ];
+        let (mut rope, floor) = helix_over_a_floor((bottom, top), wider);
         let contacts = Contacts::new(&floor, RADIUS, Touch::Drawn(Smoothing::CatmullRom)).unwrap();
         let contacts = if self_contact {
             contacts.with_self_contact(0.3).unwrap()
@@ -869,27 +878,8 @@ fn a_rope_dropped_in_a_pile_never_passes_through_itself() {
 fn a_whipped_rope_never_passes_through_itself() {
     const RADIUS: f64 = 0.005;
     const PER_SPAN: usize = 16;
-    let settings = Settings {
-        gravity: Vec3::new(0.0, -9.81, 0.0),
-        damping: 0.3,
-        ..Settings::default()
-    };
-    let material = Material {
-        stiffness: 3000.0,
-        damping: 2.0,
-    };
-    let (start, end) = (Vec3::new(0.0, RADIUS, 0.0), Vec3::new(3.0, RADIUS, 0.0));
-    let mut rope: Rope<Vec3<f64>, 16> = Rope::new(start, end, 0.6, material, settings).unwrap();
-    for i in 0..16 {
-        let a = i as f64 * 0.9;
-        let p = rope.positions()[i] + Vec3::new(0.01 * a.cos(), 0.0, 0.01 * a.sin());
-        rope.set_position(i, p).unwrap();
-    }
-    let floor = [
-        Collider::half_space(Vec3::default(), Vec3::new(0.0, 1.0, 0.0))
-            .and_then(|c| c.with_friction(0.5, 0.4))
-            .unwrap(),
-    ];
+    let straight = (Vec3::new(0.0, RADIUS, 0.0), Vec3::new(3.0, RADIUS, 0.0));
+    let (mut rope, floor) = helix_over_a_floor(straight, 0.0);
     let contacts = Contacts::new(&floor, RADIUS, Touch::Drawn(Smoothing::CatmullRom))
         .and_then(|c| c.with_self_contact(0.3))
         .unwrap();
