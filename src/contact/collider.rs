@@ -55,6 +55,32 @@ enum Solid<P: Point> {
     },
 }
 
+impl<P: Point> Solid<P> {
+    /// A box holding the solid (see [`Collider::bounds`]).
+    fn bounds(&self) -> Aabb<P> {
+        match self {
+            Solid::Ball { center, radius } => Aabb::point(*center).grown(*radius),
+            Solid::Capsule {
+                a,
+                dir,
+                length,
+                radius,
+            } => Aabb::point(*a)
+                .including(*a + *dir * *length)
+                .grown(*radius),
+            Solid::HalfSpace { .. } => Aabb {
+                min: P::splat(-P::Scalar::SAFE_RANGE),
+                max: P::splat(P::Scalar::SAFE_RANGE),
+            },
+            Solid::Box(b) => *b,
+            Solid::Polygon { corners, count, .. } => {
+                Aabb::from_points(&corners[..usize::from(*count)])
+                    .unwrap_or(Aabb::point(P::default()))
+            }
+        }
+    }
+}
+
 /// A solid shape with its motion and surface. Build it with [`ball`](Self::ball),
 /// [`capsule`](Self::capsule), [`half_space`](Self::half_space), [`aabb`](Self::aabb) or
 /// [`polygon`](Self::polygon); every constructor checks its input, so a built collider
@@ -62,6 +88,8 @@ enum Solid<P: Point> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Collider<P: Point> {
     solid: Solid<P>,
+    /// The solid's box, kept with it ([`bounds`](Self::bounds)).
+    bounds: Aabb<P>,
     velocity: P,
     static_friction: P::Scalar,
     kinetic_friction: P::Scalar,
@@ -105,6 +133,7 @@ impl<P: Point> Collider<P> {
     fn new(solid: Solid<P>) -> Self {
         Collider {
             solid,
+            bounds: solid.bounds(),
             velocity: P::default(),
             static_friction: P::Scalar::ZERO,
             kinetic_friction: P::Scalar::ZERO,
@@ -285,6 +314,7 @@ impl<P: Point> Collider<P> {
             check_points(&[a + dir * length], "moved capsule end")?;
         }
         self.solid = moved;
+        self.bounds = moved.bounds();
         Ok(())
     }
 
@@ -481,27 +511,10 @@ impl<P: Point> Collider<P> {
     }
 
     /// A box holding the solid (the half-space's is the whole safe range): the broad phase.
+    /// Kept with the solid: a load.
+    #[inline]
     pub fn bounds(&self) -> Aabb<P> {
-        match &self.solid {
-            Solid::Ball { center, radius } => Aabb::point(*center).grown(*radius),
-            Solid::Capsule {
-                a,
-                dir,
-                length,
-                radius,
-            } => Aabb::point(*a)
-                .including(*a + *dir * *length)
-                .grown(*radius),
-            Solid::HalfSpace { .. } => Aabb {
-                min: P::splat(-P::Scalar::SAFE_RANGE),
-                max: P::splat(P::Scalar::SAFE_RANGE),
-            },
-            Solid::Box(b) => *b,
-            Solid::Polygon { corners, count, .. } => {
-                Aabb::from_points(&corners[..usize::from(*count)])
-                    .unwrap_or(Aabb::point(P::default()))
-            }
-        }
+        self.bounds
     }
 }
 

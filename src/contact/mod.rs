@@ -50,7 +50,7 @@
 //! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
 //! closing by more than the thickness between runs), on a natural spline or with a collider
 //! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
-//! meets the floor once a frame: the floor adds 2.15 times its bare step, where it added
+//! meets the floor once a frame: the floor adds 2.11 times its bare step, where it added
 //! 12.8 times when the contacts ran at every substep (`docs/summary.md`, targets). After
 //! waited substeps, friction that holds a point still takes back all it slid since the
 //! contacts last ran (its particles' moves, weighted as in the point), so that a rope on a
@@ -76,8 +76,9 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider, is 7.1% of an 8-particle rope's bare step (`docs/summary.md`,
-//! targets).
+//! box test per collider (a collider keeps its box), is 6.1% of an 8-particle rope's bare
+//! step (`docs/summary.md`, targets; 4.7% of its instructions, by callgrind on a copy of
+//! the scene kept outside the repository).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
 //! rope or cloth gave each collider and, for a collider with a mass
@@ -115,6 +116,7 @@ mod step;
 mod surface;
 mod timing;
 
+use crate::curves::curve::point_at;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
 use crate::physics::system::StepInfo;
@@ -123,6 +125,7 @@ use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
 use drawn::{Weights, ball_clears_span, point_inv_mass, point_of, spread};
 pub(crate) use memory::PairMemory;
+use reach::weight_sum;
 pub(crate) use step::{Plan, Reach};
 use timing::Braking;
 pub(crate) use timing::Timing;
@@ -155,6 +158,9 @@ pub struct Contacts<'a, P: Point> {
     pushes: &'a [Cell<Push<P>>],
     /// The friction between touching parts of a rope with self-contact on; `None`: off.
     self_friction: Option<P::Scalar>,
+    /// The most a touched point's velocity weighs in the particles', on a curve and on a
+    /// surface ([`weight_sum`](reach::weight_sum) of `touch`), for each frame's reach.
+    weight_sums: (P::Scalar, P::Scalar),
 }
 
 /// What a step's contacts did to one collider: the report
@@ -192,6 +198,7 @@ impl<'a, P: Point> Contacts<'a, P> {
             touch,
             pushes: &[],
             self_friction: None,
+            weight_sums: (weight_sum(touch, false), weight_sum(touch, true)),
         })
     }
 
@@ -259,8 +266,8 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// contacts wait), and 145 of the 600 frames end more than 2% short (a copy of the test
     /// kept outside the repository), never through each other. Settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 39 times the rope's bare step (62 µs a frame on the development machine), on
-    /// average 46 times while it falls into the pile and 116 times while it is whipped
+    /// cost 43 times the rope's bare step (50 µs a frame on the development machine), on
+    /// average 57 times while it falls into the pile and 141 times while it is whipped
     /// round by its held end, 6 times lying straight on the floor, and 9 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
     /// particles few. Section (l) gives these for every integrator (settled in the pile 3
@@ -421,12 +428,19 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Moves every body with a mass over a substep of `h` at its velocity now, beyond its
     /// planned path (called before each substep's contacts).
     pub(crate) fn advance_bodies(&self, h: P::Scalar) {
-        for (k, collider) in self.colliders.iter().enumerate() {
+        // Only a collider whose push is reported can be a body.
+        for (k, collider) in self.colliders.iter().enumerate().take(self.pushes.len()) {
             let (velocity, inv_mass) = self.body(k, collider);
             if inv_mass > P::Scalar::ZERO {
                 self.report(k, P::default(), (velocity - collider.velocity()) * h);
             }
         }
+    }
+
+    /// Whether the contacts test the particles alone ([`Touch::Particles`], no
+    /// self-contact): nothing drawn to test, nothing to keep from one substep to the next.
+    pub(crate) fn particles_only(&self) -> bool {
+        matches!(self.touch, Touch::Particles) && self.self_friction.is_none()
     }
 
     /// Whether self-contact is on and tested on a drawn curve of spans: a step then keeps a
@@ -463,26 +477,44 @@ impl<'a, P: Point> Contacts<'a, P> {
                 .outward()
                 .is_none()
                 .then(|| collider.bounds().grown(self.thickness));
+            // A body with a mass moves as the particles push it: its offset is read again
+            // for each particle; any other collider's holds for the pass.
+            let pushed = collider.inv_mass() > P::Scalar::ZERO;
+            let mut offset = self.offset(k, collider, timing.lag);
             let particles = pos.iter_mut().zip(vel.iter_mut()).zip(inv_mass);
             for (i, ((x, v), &w)) in particles.enumerate() {
                 if w <= P::Scalar::ZERO {
                     continue;
                 }
-                let offset = self.offset(k, collider, timing.lag);
+                if pushed {
+                    offset = self.offset(k, collider, timing.lag);
+                }
                 if reach.is_some_and(|r| !r.contains(*x + offset)) {
                     continue;
                 }
-                let Some(touch) = self.touching(collider, *x + offset) else {
-                    continue;
-                };
-                let body = self.body(k, collider);
-                let braking = || timing.braking([(i, P::Scalar::ONE)], body.0);
-                let (dx, dv, moved) = self.response(collider, body, (touch, *v, w), braking);
-                *x += dx;
-                *v += dv;
-                self.report(k, dv * (P::Scalar::ONE / w), moved);
+                self.push_particle((k, collider), (i, x, v, w), offset, timing);
             }
         }
+    }
+
+    /// Pushes particle `i` (at `x`, moving at `v`, inverse mass `w`; `offset` carries it
+    /// into collider `k`'s frame) out of `collider` when within the thickness of it.
+    fn push_particle(
+        &self,
+        (k, collider): (usize, &Collider<P>),
+        (i, x, v, w): (usize, &mut P, &mut P, P::Scalar),
+        offset: P,
+        timing: Timing<'_, P>,
+    ) {
+        let Some(touch) = self.touching(collider, *x + offset) else {
+            return;
+        };
+        let body = self.body(k, collider);
+        let braking = || timing.braking([(i, P::Scalar::ONE)], body.0);
+        let (dx, dv, moved) = self.response(collider, body, (touch, *v, w), braking);
+        *x += dx;
+        *v += dv;
+        self.report(k, dv * (P::Scalar::ONE / w), moved);
     }
 
     /// Pushes the drawn curve of a row of particles out of every collider (see the module
@@ -639,7 +671,8 @@ impl<'a, P: Point> Contacts<'a, P> {
                 };
                 let clear =
                     |b: [P; 4]| ball_clears_span(collider, b.map(|p| p + shift), self.thickness);
-                if curve.cubic(span).is_some_and(clear) {
+                let cubic = curve.cubic(span);
+                if cubic.is_some_and(clear) {
                     continue;
                 }
                 // In closed form in a half-space; by Newton steps to a ball's centre in
@@ -649,8 +682,10 @@ impl<'a, P: Point> Contacts<'a, P> {
                     (None, Some(c)) if !P::Scalar::FIXED_POINT => curve.nearest(span, c - shift),
                     _ => curve.deepest(span, |x| collider.search_key(x + shift, scale)),
                 };
-                // A point clear of the collider takes no push: no weights to take.
-                let Some(touch) = self.touching(collider, curve.point(span, t) + shift) else {
+                // A point clear of the collider takes no push: no weights to take. A cubic
+                // span's point from the control points at hand.
+                let at = cubic.map_or_else(|| curve.point(span, t), |b| point_at(&b, t));
+                let Some(touch) = self.touching(collider, at + shift) else {
                     continue;
                 };
                 let weights = Weights::of(&*curve, span, t);

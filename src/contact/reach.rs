@@ -8,24 +8,38 @@ use crate::curves::smooth::Smoothing;
 use crate::physics::hash::StateHash;
 use crate::{Aabb, Point, Scalar};
 
-impl<P: Point> Contacts<'_, P> {
-    /// How fast the points touched can move for particle speeds up to `speed` (`surface`:
-    /// the drawn points are a surface's): Catmull-Rom's drawn points up to 5/4 as fast as
-    /// its particles on a curve, 25/16 on a surface; the natural spline's 31/20 and 5/2.
-    fn point_speed(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
-        match (self.touch, surface) {
-            (
-                Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom),
-                false,
-            ) => speed * P::Scalar::ratio(5, 4),
-            (Touch::Drawn(Smoothing::CatmullRom), true) => speed * P::Scalar::ratio(25, 16),
-            (
-                Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline),
-                false,
-            ) => speed * P::Scalar::ratio(31, 20),
-            (Touch::Drawn(Smoothing::NaturalSpline), true) => speed * P::Scalar::ratio(5, 2),
-            _ => speed,
+/// The most a touched point's velocity weighs in the particles' with `touch` (`surface`:
+/// the drawn points are a surface's), the sum of its weights' sizes: a drawn point moves at
+/// most this times as fast as the fastest particle. Catmull-Rom's 5/4 on a curve, 25/16 on
+/// a surface; the natural spline's 31/20 and 5/2; 1 for the others, whose drawn points lie
+/// in their particles' hull.
+pub(super) fn weight_sum<S: Scalar>(touch: Touch, surface: bool) -> S {
+    match (touch, surface) {
+        (Touch::Drawn(Smoothing::CatmullRom) | Touch::DrawnLoop(Smoothing::CatmullRom), false) => {
+            S::ratio(5, 4)
         }
+        (Touch::Drawn(Smoothing::CatmullRom), true) => S::ratio(25, 16),
+        (
+            Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline),
+            false,
+        ) => S::ratio(31, 20),
+        (Touch::Drawn(Smoothing::NaturalSpline), true) => S::ratio(5, 2),
+        _ => S::ONE,
+    }
+}
+
+impl<P: Point> Contacts<'_, P> {
+    /// How fast the points touched can move for particle speeds up to `speed` (`surface` as
+    /// in [`weight_sum`]).
+    fn point_speed(&self, speed: P::Scalar, surface: bool) -> P::Scalar {
+        let (curve, sheet) = self.weight_sums;
+        speed * if surface { sheet } else { curve }
+    }
+
+    /// Whether the drawn points can lie outside their particles' box (a Catmull-Rom or
+    /// natural spline's, whose weights can be below 0).
+    pub(crate) fn bulges(&self) -> bool {
+        self.weight_sums.0 > P::Scalar::ONE
     }
 
     /// Substeps per second that keep every point, against every collider it can reach this

@@ -1,9 +1,8 @@
 //! A mass-spring step that ends each substep with the contacts: the systems' side of
 //! [`Contacts`], kept here so that the physics does not depend on the contacts.
 
+use super::Contacts;
 use super::timing::{Timing, Waited};
-use super::{Contacts, Touch};
-use crate::curves::smooth::Smoothing;
 use crate::error::check_non_negative;
 use crate::physics::force::ForceField;
 use crate::physics::integrator::{Integrator, State};
@@ -45,28 +44,19 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        self.step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
-            contacts.resolve_particles(
-                Sh::flat_mut(&mut state.pos),
-                Sh::flat_mut(&mut state.vel),
-                Sh::flat(inv_mass),
-                times,
-            )
+        self.step_contacts(dt, forces, contacts, false, |state, inv_mass, timing| {
+            contacts.resolve_state(state, inv_mass, timing);
         })
     }
 
-    /// A box that holds what `touch` tests, from the particles' box `b`, which holds their
+    /// A box that holds what `contacts` test, from the particles' box `b`, which holds their
     /// polyline and their Bézier and B-spline curves and surfaces (each inside its control
-    /// points' convex hull), grown for a Catmull-Rom or natural spline by the largest
-    /// coordinate step between particles next in memory (such a spline bulges past its
-    /// particles by a fraction of its spacing along each axis). No root.
-    fn drawn_bounds(&self, touch: Touch, b: Aabb<P>) -> Aabb<P> {
-        use Smoothing::{CatmullRom, NaturalSpline};
-        let bulging = matches!(
-            touch,
-            Touch::Drawn(CatmullRom | NaturalSpline) | Touch::DrawnLoop(CatmullRom | NaturalSpline)
-        );
-        if !bulging {
+    /// points' convex hull), grown for a Catmull-Rom or natural spline
+    /// ([`bulges`](Contacts::bulges)) by the largest coordinate step between particles next
+    /// in memory (such a spline bulges past its particles by a fraction of its spacing along
+    /// each axis). No root.
+    fn drawn_bounds(&self, contacts: &Contacts<'_, P>, b: Aabb<P>) -> Aabb<P> {
+        if !contacts.bulges() {
             return b;
         }
         let x = self.positions();
@@ -92,7 +82,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     ) -> Reach<P::Scalar> {
         contacts.clear_pushes();
         let (particles, top_speed) = self.bounds_and_top_speed(dt);
-        let bounds = self.drawn_bounds(contacts.touch(), particles);
+        let bounds = self.drawn_bounds(contacts, particles);
         let (speed, object) = ((top_speed, surface), (bounds, dt));
         if !contacts.can_touch(speed, object) {
             // Nothing within reach: the frame is a bare step's, and so is its key for sleep.
@@ -212,6 +202,24 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             }
             apart => self.step_apart(dt, forces, apart),
         }
+    }
+}
+
+impl<P: Point> Contacts<'_, P> {
+    /// [`resolve_particles`](Self::resolve_particles) on a system's `state`: the particles
+    /// alone, whatever the [`Touch`](super::Touch).
+    pub(crate) fn resolve_state<Sh: Shape>(
+        &self,
+        state: &mut State<P, Sh>,
+        inv_mass: &Sh::PerParticle<P::Scalar>,
+        timing: Timing<'_, P>,
+    ) {
+        self.resolve_particles(
+            Sh::flat_mut(&mut state.pos),
+            Sh::flat_mut(&mut state.vel),
+            Sh::flat(inv_mass),
+            timing,
+        );
     }
 }
 

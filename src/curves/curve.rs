@@ -88,14 +88,7 @@ impl<P: Point, const N: usize> Bezier<P, N> {
     /// Cost: `N(N-1)/2` lerps (one multiply each per coordinate). Error: a few units of
     /// rounding times the largest coordinate, since every step is a convex combination.
     pub fn eval(&self, t: P::Scalar) -> P {
-        let t = clamp_unit(t);
-        if t == P::Scalar::ZERO {
-            self.start()
-        } else if t == P::Scalar::ONE {
-            self.end()
-        } else {
-            eval_points(&self.points, t)
-        }
+        point_at(&self.points, t)
     }
 
     /// The derivative `dP/dt` at `t` (clamped to `[0, 1]`, NaN as 0): the direction of
@@ -330,6 +323,19 @@ impl<P: Point, const N: usize> Bezier<P, N> {
             P::Scalar::EPSILON
         };
         arclen_rec(self, acc, 0)
+    }
+}
+
+/// [`Bezier::eval`] of a bare control polygon: `t` clamped (NaN as 0), the ends exact.
+#[inline]
+pub(crate) fn point_at<P: Point, const N: usize>(points: &[P; N], t: P::Scalar) -> P {
+    let t = clamp_unit(t);
+    if t == P::Scalar::ZERO {
+        points[0]
+    } else if t == P::Scalar::ONE {
+        points[N - 1]
+    } else {
+        eval_points(points, t)
     }
 }
 

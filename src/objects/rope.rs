@@ -294,7 +294,11 @@ impl<P: Point, const N: usize, const CAP: usize, I: Integrator> Rope<P, N, CAP, 
         mut memory: Option<&mut PairMemory<P, N>>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
         let closed = matches!(contacts.touch(), Touch::DrawnLoop(_));
-        let joined = Self::joined(self.system.topology(), closed);
+        let joined = match contacts.particles_only() {
+            // Particle contacts alone tell no pieces apart.
+            true => [true; N],
+            false => Self::joined(self.system.topology(), closed),
+        };
         self.system
             .step_within(dt, forces, contacts, reach, |state, inv_mass, times| {
                 let parts = (&mut state.pos, &mut state.vel, inv_mass);

@@ -421,6 +421,38 @@ fn a_collider_out_of_reach_asks_for_no_substeps() {
     }
 }
 
+/// A collider moved by `translate` is met where it is now, by the particles and by the
+/// drawn curve: its box moves with it (a peg put under a settled rope holds it up, and one
+/// moved away lets it fall as if it had never been there).
+#[test]
+fn a_translated_collider_is_met_where_it_now_is() {
+    for touch in [Touch::Particles, Touch::Drawn(Smoothing::BSpline)] {
+        // Built far above the rope, then moved under its middle particle.
+        let mut peg = Collider::ball(Vec2::new(0.0, 40.0), 0.3).unwrap();
+        peg.translate(Vec2::new(0.0, -41.0)).unwrap();
+        let there = Collider::ball(Vec2::new(0.0, -1.0), 0.3).unwrap();
+        assert_eq!(peg.bounds(), there.bounds(), "{touch:?}");
+        let moved: Rope<Vec2<f64>, 9> = common::draped_rope(&[peg], touch, 360);
+        let built: Rope<Vec2<f64>, 9> = common::draped_rope(&[there], touch, 360);
+        assert_eq!(moved.positions(), built.positions(), "{touch:?}");
+        let middle = moved.positions()[4];
+        assert!(
+            middle.y > -1.0,
+            "{touch:?}: the peg holds the rope up ({middle:?})"
+        );
+        // Moved away, it is no longer met: the rope hangs as with no collider at all.
+        let mut gone = there;
+        gone.translate(Vec2::new(50.0, 0.0)).unwrap();
+        let away: Rope<Vec2<f64>, 9> = common::draped_rope(&[gone], touch, 360);
+        let free: Rope<Vec2<f64>, 9> = common::draped_rope(&[], touch, 360);
+        assert_eq!(away.positions(), free.positions(), "{touch:?}");
+        assert!(
+            free.positions()[4].y < -1.0,
+            "{touch:?}: without it the rope sags past it"
+        );
+    }
+}
+
 /// A drawn Bézier, B-spline or polyline lies inside its particles' box (each inside its
 /// control points' convex hull), so a ball that passes beside a straight rope, further than
 /// the thickness from that box, asks for no substeps and leaves the step as it was; the same
