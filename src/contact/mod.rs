@@ -111,6 +111,7 @@ mod drawn;
 mod itself;
 mod memory;
 mod reach;
+mod solid;
 mod span_pairs;
 mod step;
 mod surface;
