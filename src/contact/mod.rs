@@ -77,8 +77,7 @@
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
 //! box test per collider (a collider keeps its box), is 6.1% of an 8-particle rope's bare
-//! step (`docs/summary.md`, targets; 4.7% of its instructions, by callgrind on a copy of
-//! the scene kept outside the repository).
+//! step (`docs/summary.md`, targets).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
 //! rope or cloth gave each collider and, for a collider with a mass

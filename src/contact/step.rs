@@ -44,8 +44,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         forces: F,
         contacts: &Contacts<'_, P>,
     ) -> Result<StepInfo<P::Scalar>, Error> {
-        self.step_contacts(dt, forces, contacts, false, |state, inv_mass, timing| {
-            contacts.resolve_state(state, inv_mass, timing);
+        self.step_contacts(dt, forces, contacts, false, |state, inv_mass, times| {
+            contacts.resolve_particles(
+                Sh::flat_mut(&mut state.pos),
+                Sh::flat_mut(&mut state.vel),
+                Sh::flat(inv_mass),
+                times,
+            )
         })
     }
 
@@ -202,24 +207,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             }
             apart => self.step_apart(dt, forces, apart),
         }
-    }
-}
-
-impl<P: Point> Contacts<'_, P> {
-    /// [`resolve_particles`](Self::resolve_particles) on a system's `state`: the particles
-    /// alone, whatever the [`Touch`](super::Touch).
-    pub(crate) fn resolve_state<Sh: Shape>(
-        &self,
-        state: &mut State<P, Sh>,
-        inv_mass: &Sh::PerParticle<P::Scalar>,
-        timing: Timing<'_, P>,
-    ) {
-        self.resolve_particles(
-            Sh::flat_mut(&mut state.pos),
-            Sh::flat_mut(&mut state.vel),
-            Sh::flat(inv_mass),
-            timing,
-        );
     }
 }
 
