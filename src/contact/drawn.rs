@@ -39,8 +39,9 @@ pub(crate) trait DrawnSpans<P: Point, const K: usize> {
     fn rebuild(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)>;
     /// [`rebuild`](Self::rebuild) put off: the spans that the moved control points weigh
     /// in, `(first, count)` round a loop, left for
-    /// [`redraw_spans`](Self::redraw_spans) when next read; `(0, 0)` when they weigh in
-    /// every span, which this draws again at once; `None` when they left the range.
+    /// [`redraw_spans`](Self::redraw_spans) when next read; `(0, 0)` when this drew every
+    /// span again at once (one Bézier's, a natural spline's); `None` when they left the
+    /// range.
     fn outdated(&mut self, pos: &[P; K], moved: (usize, usize)) -> Option<(usize, usize)>;
     /// Draws spans `first..first + count` (round a loop) again from `pos`.
     fn redraw_spans(&mut self, pos: &[P; K], spans: (usize, usize));
@@ -118,18 +119,33 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
         t: S,
     ) -> Self {
         let mut w = Self::none();
-        if let Some((first, near)) = curve.window(span, t) {
-            for (i, &x) in near.iter().enumerate() {
-                w.push(first + i, x);
-            }
-            return w;
-        }
-        let mut dense = [S::ZERO; K];
-        curve.weights(span, t, &mut dense);
-        for (i, &x) in dense.iter().enumerate() {
-            w.push(i, x);
-        }
+        w.take(curve, span, t);
         w
+    }
+
+    /// These weights made [`of`](Self::of) span `span`'s point at `t` on `curve`, in place
+    /// (a loop's weights, with no copy of them a pass).
+    pub(super) fn take<P: Point<Scalar = S>>(
+        &mut self,
+        curve: &impl DrawnSpans<P, K>,
+        span: usize,
+        t: S,
+    ) {
+        self.entries.clear();
+        match curve.window(span, t) {
+            Some((first, near)) => {
+                for (i, &x) in near.iter().enumerate() {
+                    self.push(first + i, x);
+                }
+            }
+            None => {
+                let mut dense = [S::ZERO; K];
+                curve.weights(span, t, &mut dense);
+                for (i, &x) in dense.iter().enumerate() {
+                    self.push(i, x);
+                }
+            }
+        }
     }
 
     /// The weights of the point at `u` (clamped to `[0, 1]`) of the straight segment from
@@ -150,7 +166,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
     }
 
     /// No particle weighs in.
-    fn none() -> Self {
+    pub(super) fn none() -> Self {
         Weights {
             entries: heapless::Vec::new(),
         }

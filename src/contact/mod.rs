@@ -50,7 +50,7 @@
 //! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
 //! closing by more than the thickness between runs), on a natural spline or with a collider
 //! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
-//! meets the floor once a frame: the floor adds 2.11 times its bare step, where it added
+//! meets the floor once a frame: the floor adds 1.67 times its bare step, where it added
 //! 12.8 times when the contacts ran at every substep (`docs/summary.md`, targets). After
 //! waited substeps, friction that holds a point still takes back all it slid since the
 //! contacts last ran (its particles' moves, weighted as in the point), so that a rope on a
@@ -76,8 +76,9 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider (a collider keeps its box), is 6.1% of an 8-particle rope's bare
-//! step (`docs/summary.md`, targets).
+//! box test per collider (a collider keeps its box), is 1.2% of an 8-particle rope's bare
+//! step in the last run (`docs/summary.md`, targets; 6.1% and 2.4% in two runs before of
+//! the same code: the machine's noise is of that size).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
 //! rope or cloth gave each collider and, for a collider with a mass
@@ -120,7 +121,7 @@ use crate::curves::curve::point_at;
 use crate::curves::smooth::{Smoothed, Smoothing};
 use crate::error::check_non_negative;
 use crate::physics::system::StepInfo;
-use crate::{Error, Point, Scalar};
+use crate::{Aabb, Error, Point, Scalar};
 use collider::{Collider, coulomb};
 pub(crate) use drawn::DrawnSpans;
 use drawn::{Weights, ball_clears_span, point_inv_mass, point_of, spread};
@@ -266,12 +267,12 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// contacts wait), and 145 of the 600 frames end more than 2% short (a copy of the test
     /// kept outside the repository), never through each other. Settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 43 times the rope's bare step (50 µs a frame on the development machine), on
-    /// average 57 times while it falls into the pile and 141 times while it is whipped
-    /// round by its held end, 6 times lying straight on the floor, and 9 times for a
+    /// cost 37 times the rope's bare step (63 µs a frame on the development machine), on
+    /// average 44 times while it falls into the pile and 102 times while it is whipped
+    /// round by its held end, 5 times lying straight on the floor, and 9 times for a
     /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
     /// particles few. Section (l) gives these for every integrator (settled in the pile 3
-    /// to 29 times its bare step, still in the spiral 1.7 to 9.5 times: the dearer the
+    /// to 23 times its bare step, still in the spiral 1.8 to 8.6 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
@@ -643,7 +644,8 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// Pushes a curve of spans drawn through `pos` out of every collider. A correction
     /// leaves the spans its particles weigh in (7 of a cubic spline's) to draw again when
     /// next read, each once however many pushes moved it (all of a natural spline's or one
-    /// Bézier's are drawn again at once); `drawn`: all are drawn again before it returns,
+    /// Bézier's are drawn again at once), and a span's box, taken once for all the
+    /// colliders, grown by what the pushes since can have moved it; `drawn`: all are drawn again before it returns,
     /// for a caller that reads the curve after. `false` when it left the range (the step's
     /// guard undoes it).
     fn resolve_colliders<const K: usize>(
@@ -654,18 +656,42 @@ impl<'a, P: Point> Contacts<'a, P> {
         drawn: bool,
     ) -> bool {
         let n = curve.span_count().min(K);
+        // Spans a push moved since they were drawn, and a box that holds each span as drawn
+        // (`None`: not taken yet), taken once for all the colliders: with `slack` then (the
+        // most, on each axis, that pushes have moved a control point since this began), it
+        // holds the span as it is now when grown by what `slack` has gained since, and a
+        // span moved is drawn again only when a collider comes within that.
         let mut outdated = [false; K];
+        let mut boxes: [Option<(Aabb<P>, P)>; K] = [None; K];
+        let mut slack = P::default();
+        // The most a control point moves for a particle move of 1 (a sum of weight sizes).
+        let spill = match self.bulges() {
+            true => P::Scalar::ratio(4, 3),
+            false => P::Scalar::ONE,
+        };
+        let reread = self.colliders.len() > 1;
+        let mut weights = Weights::none();
         for (k, collider) in self.colliders.iter().enumerate() {
             let shift = self.offset(k, collider, timing.lag);
             let reach = collider.bounds().moved(-shift).grown(self.thickness);
             for span in 0..n {
-                if core::mem::take(&mut outdated[span]) {
-                    curve.redraw_spans(pos, (span, 1));
-                }
-                let hull = curve.span_bounds(span);
-                if !hull.overlaps(&reach) {
-                    continue;
-                }
+                let hull = match boxes[span] {
+                    Some((hull, at)) if !hull.swept(slack - at).overlaps(&reach) => continue,
+                    Some((hull, _)) if !outdated[span] => hull,
+                    _ => {
+                        if core::mem::take(&mut outdated[span]) {
+                            curve.redraw_spans(pos, (span, 1));
+                        }
+                        let hull = curve.span_bounds(span);
+                        if reread {
+                            boxes[span] = Some((hull, slack));
+                        }
+                        if !hull.overlaps(&reach) {
+                            continue;
+                        }
+                        hull
+                    }
+                };
                 let Some(scale) = self.near(collider, hull, shift) else {
                     continue;
                 };
@@ -688,7 +714,7 @@ impl<'a, P: Point> Contacts<'a, P> {
                 let Some(touch) = self.touching(collider, at + shift) else {
                     continue;
                 };
-                let weights = Weights::of(&*curve, span, t);
+                weights.take(&*curve, span, t);
                 let v = point_of(vel, weights.entries());
                 let Some(w) = point_inv_mass(inv_mass, weights.entries()) else {
                     continue;
@@ -701,6 +727,18 @@ impl<'a, P: Point> Contacts<'a, P> {
                     let Some((first, count)) = curve.outdated(pos, weights.ends()) else {
                         return false;
                     };
+                    if count == 0 {
+                        // Every span drawn again at once.
+                        (outdated, boxes) = ([false; K], [None; K]);
+                    } else if reread {
+                        // Particle i moved by dx · w_i / (m_i · w). With one collider, each
+                        // box is read where it is taken.
+                        let most = weights.entries().fold(P::Scalar::ZERO, |most, (i, x)| {
+                            most.max(x.abs() * inv_mass[i])
+                        });
+                        let moved = dx * (most / w * spill);
+                        slack += moved.max_coords(-moved);
+                    }
                     for j in 0..count {
                         if let Some(span) = (first + j).checked_rem(n) {
                             outdated[span] = true;

@@ -43,10 +43,12 @@ impl<P: Point> Power<P> {
     /// The parameter in `[0, 1]` of the point nearest `c`: the nearest of [`SAMPLES`] + 1
     /// evenly spaced points, then up to [`NEAREST_STEPS`] Newton steps on the squared
     /// distance inside the bracket of that point's two neighbours, a step that leaves the
-    /// bracket (or meets no curvature) replaced by halving it towards the descent. Finds the
-    /// nearest point of the dip the best sample lies in, to the format's precision (the
-    /// halving search of [`Bezier::deepest`](crate::Bezier) samples 5 points and stops at
-    /// 1/1024). Cost: 9 points, then a point and two derivatives a step.
+    /// bracket (or meets no curvature) replaced by halving it towards the descent; a Newton
+    /// step that moved less than `√ε` (which leaves about `ε`) or a halving that moved less
+    /// than `ε` ends them. Finds the nearest point of the dip the best sample lies in, to
+    /// the format's precision (the halving search of [`Bezier::deepest`](crate::Bezier)
+    /// samples 5 points and stops at 1/1024). Cost: 9 points, then a point and two
+    /// derivatives a step.
     pub(crate) fn nearest(&self, c: P) -> P::Scalar {
         let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
         let step = P::Scalar::ratio(1, SAMPLES);
@@ -75,17 +77,21 @@ impl<P: Point> Power<P> {
             } else {
                 break;
             }
-            let newton = (h > zero).then(|| t - g / h);
-            let next = newton
-                .filter(|&n| n > lo && n < hi)
-                .unwrap_or((lo + hi) * P::Scalar::ratio(1, 2));
+            let newton = (h > zero).then(|| t - g / h).filter(|&n| n > lo && n < hi);
+            let next = newton.unwrap_or((lo + hi) * P::Scalar::ratio(1, 2));
             let moved = (next - t).abs();
             (t, d) = (next, self.at(next) - c);
             let e = d.dot(d);
             if e < best.1 {
                 best = (t, e);
             }
-            if moved <= P::Scalar::EPSILON {
+            // A Newton step squares the error: one that moved less than `√ε` left it
+            // within about `ε`.
+            let settled = match newton {
+                Some(_) => moved * moved,
+                None => moved,
+            };
+            if settled <= P::Scalar::EPSILON {
                 break;
             }
         }

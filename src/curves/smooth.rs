@@ -235,8 +235,10 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
     }
 
     /// What [`redraw`](Self::redraw) would draw again after particles `lo..=hi` moved,
-    /// `(first, count)` round a loop, left to [`redraw_spans`](Self::redraw_spans); `None`
-    /// when they weigh in every span, which this draws again at once.
+    /// `(first, count)` round a loop (at most every span), left to
+    /// [`redraw_spans`](Self::redraw_spans); `None` for one Bézier or a natural spline, whose
+    /// every span each particle weighs in, and for particles past the curve's, which this
+    /// draws again at once.
     ///
     /// # Errors
     /// As [`open`](Self::open), for the moved particles.
@@ -254,7 +256,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
             Smoothing::Bezier | Smoothing::NaturalSpline => (K, K),
         };
         let count = (hi.min(K - 1) + 1).saturating_sub(lo) + before + after;
-        if count >= spans || lo > hi || hi >= self.len {
+        if before >= K || lo > hi || hi >= self.len {
             *self = if closed {
                 Self::ring(self.method, particles)
             } else {
@@ -264,7 +266,7 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         }
         check_points(&particles[lo..=hi], "particles")?;
         Ok(Some(if closed {
-            ((lo + K - before) % K, count)
+            ((lo + K - before) % K, count.min(spans))
         } else {
             let first = lo.saturating_sub(before);
             (first, (hi + after).min(spans - 1) + 1 - first)

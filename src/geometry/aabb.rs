@@ -58,6 +58,17 @@ impl<P: Point> Aabb<P> {
         }
     }
 
+    /// This box grown on each axis by `by`'s size along it: it holds the box moved by
+    /// any multiple of `by` from -1 to 1.
+    #[inline]
+    pub(crate) fn swept(self, by: P) -> Self {
+        let size = by.max_coords(-by);
+        Aabb {
+            min: self.min - size,
+            max: self.max + size,
+        }
+    }
+
     /// This box moved by `offset`.
     #[inline]
     pub(crate) fn moved(self, offset: P) -> Self {

@@ -453,6 +453,62 @@ fn a_translated_collider_is_met_where_it_now_is() {
     }
 }
 
+/// A push moves the spans its particles weigh in, so a later collider of the same pass must
+/// meet a span that a push moved into it: a ball under a straight rope pushes its middle
+/// span up, which lifts the span before it into a second ball, clear of it before the push.
+/// One substep, so that no later pass could make up for a span the second ball missed (it
+/// would end 4 cm in): the drawn curve ends within a millimetre of its surface, with every
+/// smoothing that draws spans (the second ball's push on a span moves the one before it,
+/// which the next pass meets: 0.06 mm in on Catmull-Rom, 0.13 mm on the polyline).
+#[test]
+fn a_span_pushed_into_a_later_collider_is_met_in_the_same_pass() {
+    let settings = Settings {
+        gravity: Vec2::new(0.0, 0.0),
+        ..Settings::default()
+    };
+    let material = Material {
+        stiffness: 10.0,
+        damping: 0.0,
+    };
+    let below = Collider::ball(Vec2::new(3.5, -0.5), 0.6).unwrap();
+    let (centre, radius) = (Vec2::new(2.7, 0.33), 0.3);
+    let above = Collider::ball(centre, radius).unwrap();
+    for smoothing in [
+        Smoothing::BSpline,
+        Smoothing::CatmullRom,
+        Smoothing::Polyline,
+    ] {
+        let start = (Vec2::new(0.0, 0.0), Vec2::new(7.0, 0.0));
+        let mut rope: Rope<Vec2<f64>, 8> =
+            Rope::new(start.0, start.1, 1.0, material, settings).unwrap();
+        let curve = |rope: &Rope<Vec2<f64>, 8>| {
+            let mut out = [Vec2::default(); 7 * 64 + 1];
+            let particles: [Vec2<f64>; 8] = rope.positions().try_into().unwrap();
+            let drawn = dunas::smooth::Smoothed::open(smoothing, &particles).unwrap();
+            let n = drawn.sample(&mut out).unwrap();
+            out[..n].to_vec()
+        };
+        let gap = |rope: &Rope<Vec2<f64>, 8>| {
+            curve(rope)
+                .iter()
+                .map(|p| p.distance(centre) - radius)
+                .fold(f64::INFINITY, f64::min)
+        };
+        assert!(gap(&rope) > 0.02, "{smoothing:?}: clear of it at first");
+        let pegs = [below, above];
+        let contacts = Contacts::new(&pegs, 0.0, Touch::Drawn(smoothing)).unwrap();
+        let info = rope.step_touching(1.0 / 60.0, (), &contacts).unwrap();
+        assert_eq!(info.substeps, 1, "{smoothing:?}");
+        let lifted = rope.positions()[3].y;
+        assert!(
+            lifted > 0.05,
+            "{smoothing:?}: the push lifted the rope ({lifted})"
+        );
+        let gap = gap(&rope);
+        assert!(gap > -1e-3, "{smoothing:?}: {gap} m into the second ball");
+    }
+}
+
 /// A drawn Bézier, B-spline or polyline lies inside its particles' box (each inside its
 /// control points' convex hull), so a ball that passes beside a straight rope, further than
 /// the thickness from that box, asks for no substeps and leaves the step as it was; the same
