@@ -123,8 +123,9 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
         w
     }
 
-    /// These weights made [`of`](Self::of) span `span`'s point at `t` on `curve`, in place
-    /// (a loop's weights, with no copy of them a pass).
+    /// Makes these the weights of span `span`'s point at `t` on `curve`, as
+    /// [`of`](Self::of) does, in place: a loop that takes one point's weights after another
+    /// fills one buffer and copies none out.
     pub(super) fn take<P: Point<Scalar = S>>(
         &mut self,
         curve: &impl DrawnSpans<P, K>,
