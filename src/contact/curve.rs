@@ -135,9 +135,9 @@ impl<P: Point> Contacts<'_, P> {
     /// leaves the spans its particles weigh in (7 of a cubic spline's) to draw again when
     /// next read, each once however many pushes moved it (all of a natural spline's or one
     /// Bézier's are drawn again at once), and a span's box, taken once for all the
-    /// colliders, grown by what the pushes since can have moved it; `drawn`: all are drawn again before it returns,
-    /// for a caller that reads the curve after. `false` when it left the range (the step's
-    /// guard undoes it).
+    /// colliders, grown by what the pushes since can have moved it; `drawn`: all are drawn
+    /// again before it returns, for a caller that reads the curve after. `false` when it
+    /// left the range (the step's guard undoes it).
     fn resolve_colliders<const K: usize>(
         &self,
         (pos, vel, inv_mass): (&mut [P; K], &mut [P; K], &[P::Scalar; K]),
