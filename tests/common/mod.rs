@@ -720,6 +720,51 @@ pub fn hung_cloth<const U: usize, I: Integrator>(
     Ok(cloth)
 }
 
+/// The sail of [`boat_sail`] and its wind.
+pub type BoatSail<S, I> = (Cloth<Vec3<S>, 8, 8, I>, dunas::force::SailWind<S>);
+
+/// The boat scene's sail in format `S`: 8×8, 3 m on the boom and 4 m on the mast, 2 kg,
+/// springs 900/300/60 N/m times `scale`, pinned on mast, gaff and boom, stepped by
+/// `integrator` under a drag of 0.3/s; and its 5 m/s wind, gusting by `gust` m/s for 1.5 s
+/// every 3 s.
+///
+/// # Errors
+/// The cloth's or the wind's: a `scale` that leaves a stiffness not positive.
+pub fn boat_sail<S: Scalar, I: Integrator>(
+    integrator: I,
+    scale: f64,
+    gust: f64,
+) -> Result<BoatSail<S, I>, Error> {
+    use dunas::force::{SailWind, Wind};
+    let f = S::from_f64;
+    let settings = Settings {
+        gravity: Vec3::new(f(0.0), f(-9.81), f(0.0)),
+        damping: f(0.3),
+        ..Settings::default()
+    }
+    .with_integrator(integrator);
+    let materials = [(900.0, 0.6), (300.0, 0.2), (60.0, 0.05)].map(|(k, c)| Material {
+        stiffness: f(k * scale),
+        damping: f(c),
+    });
+    let (origin, du, dv) = (
+        Vec3::new(f(0.0), f(4.5), f(0.0)),
+        Vec3::new(f(3.0), f(0.0), f(0.0)),
+        Vec3::new(f(0.0), f(-4.0), f(0.0)),
+    );
+    let mut sail = Cloth::rectangle(origin, du, dv, f(2.0), materials, settings)?;
+    sail.pin_column(0)?;
+    sail.pin_row(0)?;
+    sail.pin_row(7)?;
+    let mut air = Wind::still(f(0.02));
+    air.velocity = Vec3::new(f(0.0), f(0.0), f(5.0));
+    air.gust = Vec3::new(f(0.0), f(0.0), f(gust));
+    air.gust_start = f(0.5);
+    air.gust_length = f(1.5);
+    air.gust_every = f(3.0);
+    Ok((sail, SailWind::new(air, f(0.7))?))
+}
+
 /// The rope of [`rope_round_a_box`].
 pub type BoxRope<S, I> = dunas::Rope<Vec2<S>, 12, 12, I>;
 

@@ -45,7 +45,7 @@ use core::cell::Cell;
 /// with one round, a `DirectSprings` rope pulled round a box by a load went up to 14 times its
 /// thickness into the box; with the rounds it stays out (`tests/suite/promises.rs`,
 /// `a_load_round_a_box_keeps_a_springy_rope_out_of_it`; a 20 kg load's rope in f32, 600
-/// frames: never in the box, 6.4 times the frame without the box, `docs/summary.md`,
+/// frames: never in the box, 7.9 times the frame without the box, `docs/summary.md`,
 /// targets). A frame that touches pays a round more at least, each a pass of the contacts;
 /// a rope pressed onto many pegs pays up to 8 (16 pegs 0.1 times its spacing under an
 /// 8-particle rope: 16.8 times its bare frame, 3.0 times in the last run before the
@@ -68,20 +68,23 @@ use core::cell::Cell;
 /// Measured (`tests/suite/physics.rs` and `tests/suite/converge.rs`, `direct_springs_*`;
 /// `docs/summary.md`, section (j) and its targets):
 /// - the boat scene's sail in a steady wind rests within 0.001 mm of the balance
-///   symplectic Euler reaches in `f64`, and within 0.017 mm 100 times stiffer (3.1 mm in
+///   symplectic Euler reaches in `f64`, and within 0.008 mm 100 times stiffer (3.1 mm in
 ///   `Q16`); a hanging rope sags as statics says at every stiffness from 10² to 10⁸ N/m,
 ///   one substep a frame;
 /// - a 1 m, 1 kg cloth held level by two corners under a drag of 2/s, 8×8 and 20×20,
 ///   at the defaults hangs within 1% of the statics' 1.00 m after 10 s at axial stiffness
-///   `EA = 10³` and `10⁴ N` (it hung 0.93 and 0.90 m, 8×8, with the factor's own steps), but
-///   still moves 1 to 12 mm in its 10th second, where the converged motion (symplectic
-///   Euler at 480 Hz) moves 0.18 to 0.34 mm: what a solve leaves unconverged keeps it
-///   moving; stiffer still, it falls slower. A 1 kg,
-///   8×8 cloth of 900 N/m let go of all but one pin swings down as far as symplectic
-///   Euler's in its first half second (103%; 46% with one iteration). A measured solve
-///   that stops short says so ([`measure`](Self::measure));
-/// - it damps, as backward Euler does: an undamped released rope keeps 1.4% of its swing's
-///   energy over 10 s (7.5% and 9.3% with a bob of 1 and 10 times its mass), where the
+///   `EA = 10³` and `10⁴ N` (it hung 0.93 and 0.90 m, 8×8, with the factor's own steps),
+///   and comes to rest: no particle moves more than 0.4 mm in its 10th second, where the
+///   converged motion (symplectic Euler at 480 Hz) moves 0.18 to 0.34 mm (solves that
+///   stopped once within the tolerance, at most 4 iterations, left it creeping 1 to 12 mm);
+///   stiffer still, it falls slower. A 1 kg, 8×8 cloth of 900 N/m let go of all but one
+///   pin swings down as far as symplectic Euler's in its first half second (102%; 46% with
+///   one iteration). A measured solve that stops short says so ([`measure`](Self::measure));
+/// - a stiff cloth moves in time: the boat scene's sail 100 times stiffer, in its gusts,
+///   stays within 9.5 mm of the fully iterated solve over 10 s, of a 150 mm swing (36 mm
+///   behind with solves stopped once within the tolerance, at most 4 iterations);
+/// - it damps, as backward Euler does: an undamped released rope keeps 3.7% of its swing's
+///   energy over 10 s (7.6% and 9.4% with a bob of 1 and 10 times its mass), where the
 ///   converged solve keeps 3.7%, 7.7% and 9.8%, against 96% for symplectic Euler; with
 ///   [`keep_energy`](Self::keep_energy) it keeps it whole. For a rope under a heavy bob,
 ///   use [`DirectChain`](super::DirectChain) (a 10 kg bob on a 1 kg rope of 10⁵ N/m
@@ -94,16 +97,19 @@ use core::cell::Cell;
 /// envelopes (each row from its first spring), and the measure, a pass over the springs
 /// after each; along conjugate directions, another pass over the springs (a division
 /// each) and three passes over the particles an iteration, and two passes over the
-/// springs a solve for the energy (the boat sail 100 times stiffer, every solve taking
-/// its 4 iterations, costs 1.93 times its frame at its own stiffness: `docs/summary.md`,
-/// targets). Unmeasured, the same at every stiffness;
-/// measured, from 1 iteration where they converge at once to `iterations` where they do not. A topology that lists its
+/// springs a solve for the energy. Unmeasured, the same at every stiffness; measured, from
+/// 1 iteration where they converge at once to `iterations` where they do not: the boat
+/// sail 100 times stiffer in its gusts, its solves taking up to all 16 iterations to keep
+/// pace, costs 3.56 times its frame at its own stiffness (1.93 times with at most 4, in
+/// slow motion), and a 30-particle rope of axial stiffness 1 000 N swinging costs 3.72
+/// times symplectic Euler's frame (1.28 times with at most 4; `docs/summary.md`, section
+/// (j) and its targets). A topology that lists its
 /// springs in runs ([`Topology::for_each_run`]: a cloth's rows) has each run's numbers
 /// taken once. On a Cortex-M4F the 8×8 sail (band 16, 42 particles free, 378 entries),
 /// with one iteration unmeasured, takes about 58 000 instructions a step, 43 000 of them
 /// the iteration, and 124 000 more for a new factor (`examples/mcu_sail.rs`); its frame
-/// takes 98 800 on average, 132 900 measured and 264 600 at the defaults (along conjugate
-/// directions). Memory: the factor, the masses, the envelopes and the rows' particles,
+/// takes 98 800 on average, 132 900 measured and 274 700 at the defaults (along conjugate
+/// directions; 264 700 with at most 4 iterations). Memory: the factor, the masses, the envelopes and the rows' particles,
 /// `n·(b + 2)` scalars, `n` 16-bit counts and `n` 32-bit indices in the system (5.0 KB for
 /// the 8×8 sail in `f32`), and about `n·10` scalars of stack in 3D.
 ///
@@ -128,21 +134,29 @@ use core::cell::Cell;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DirectSprings {
-    /// Most iterations a solve (4 by default; 0 counts as 1), each a spring direction
+    /// Most iterations a solve (16 by default; 0 counts as 1), each a spring direction
     /// update and a back-substitution; in floats, from 2 on, along conjugate directions
     /// (see the type's docs). With [`measure`](Self::measure), a solve stops as soon as it
-    /// is within [`TOLERANCE`](super::TOLERANCE).
+    /// is done (see there): a soft or resting cloth stops after a few, a stiff one in
+    /// motion may take all of them (the default was 4 before: a stiff cloth then moved in
+    /// slow motion).
     pub iterations: u8,
     /// Whether each solve measures how far it ended from its equations (`true` by
     /// default): what each free particle still owes to them (its force imbalance times
     /// `h²` over its mass), over the shortest rest length of a spring with a free end. A
-    /// solve within [`TOLERANCE`](super::TOLERANCE) (0.1%) stops there; one that reaches
-    /// `iterations` beyond it reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
+    /// solve stops once that is within [`TOLERANCE`](super::TOLERANCE) (0.1%) and either at
+    /// most half of the farthest it moved a particle along an axis this step (it keeps pace
+    /// with the motion: what it leaves would otherwise slow the motion, and keep a cloth
+    /// creeping towards its balance long after it should rest) or more than half of what
+    /// the iteration before left (it stalled, as at rest in the format's rounding); and once
+    /// it is within a 64th of the tolerance. One that reaches `iterations` beyond the
+    /// tolerance reports it in [`StepInfo::converged`](crate::system::StepInfo::converged)
     /// and [`StepInfo::residual`](crate::system::StepInfo::residual). The measure is a pass
-    /// over the springs (a square root and a division each) after each iteration: the
-    /// boat scene's sail on a Cortex-M4F, one iteration a solve, takes 132 900 instructions
-    /// a frame measured and 98 800 unmeasured (`examples/mcu_sail.rs`). Unmeasured, a
-    /// solve takes all its `iterations` and reports `converged` with a residual of 0.
+    /// over the springs (a square root and a division each) and one over the particles
+    /// after each iteration: the boat scene's sail on a Cortex-M4F, one iteration a solve,
+    /// takes 132 900 instructions a frame measured and 98 800 unmeasured
+    /// (`examples/mcu_sail.rs`). Unmeasured, a solve takes all its `iterations` and reports
+    /// `converged` with a residual of 0.
     pub measure: bool,
     /// Solves a step, each of an equal share of it (1 by default); 0 counts as 1.
     pub substeps: u8,
@@ -155,23 +169,24 @@ pub struct DirectSprings {
     /// takes; what a solve cannot give back (its particles nearly still) is owed to the
     /// next. Measured (`tests/suite/physics.rs`, `direct_springs_keep_energy_*`): an undamped
     /// released rope keeps its swing's energy within 1% over 10 s, with a bob of up to 10
-    /// times its mass too (1.4% without); a bob on a spring loses its energy to drag as
+    /// times its mass too (3.7% without); a bob on a spring loses its energy to drag as
     /// `e^(−γ t)` says within 15% over 4 s; the boat scene's sail rests within 0.002 mm of
     /// its balance; with a drag of 0.1/s the released rope keeps 39% of its swing over 10 s
     /// (symplectic Euler 35%, Verlet 41%: `docs/summary.md`, section (j)). The motion it
     /// keeps is livelier where stiff springs turn: a heavy bob stretches its rope as
     /// symplectic Euler's does. Costs two passes over the springs more a solve, a square
     /// root a spring each, where the iterations are the factor's own; along conjugate
-    /// directions (floats, the defaults) those passes are taken anyway (the 8-particle
-    /// rope's frame as dear: `docs/summary.md`, section (j)).
+    /// directions (floats, the defaults) those passes are taken anyway, but the livelier
+    /// swing it keeps takes more iterations a solve to keep pace with (the undamped
+    /// 8-particle rope's frame 1.7 times as dear: `docs/summary.md`, section (j)).
     pub keep_energy: bool,
 }
 
 impl Default for DirectSprings {
-    /// One solve a step of at most 4 iterations, its damping kept.
+    /// One measured solve a step of at most 16 iterations, its damping kept.
     fn default() -> Self {
         DirectSprings {
-            iterations: 4,
+            iterations: 16,
             substeps: 1,
             measure: true,
             keep_energy: false,
@@ -444,6 +459,7 @@ impl DirectSprings {
         // solve's equations.
         let shortest = self.measure.then(|| model.shortest_rest());
         let mut solved_as = None;
+        let mut before = None;
         // Unmeasured, `cap` passes over the springs, each followed by a solve; measured, one
         // more that measures the last solve's result.
         let passes = u16::from(cap) + u16::from(self.measure);
@@ -510,9 +526,11 @@ impl DirectSprings {
                 // What a free particle still owes: its imbalance over its mass.
                 let measured = model.solved(ok, r, P::Scalar::ONE, shortest);
                 solved_as = Some(measured);
-                if measured.converged || iteration == u16::from(cap) {
+                let moved = shortest.map_or(zero, |s| largest_move(state, w, h) / s);
+                if iteration == u16::from(cap) || enough(measured, moved, before) {
                     break;
                 }
+                before = Some(measured.residual);
             }
             // The change of each free particle (a held one's is 0), in the rows' order: the
             // solve's, or a length along the conjugate direction made from it.
@@ -548,6 +566,38 @@ impl DirectSprings {
         }
         solved_as.unwrap_or(Solved::plain(ok))
     }
+}
+
+/// Whether a measured solve is done ([`DirectSprings::measure`]), having `measured` its
+/// equations, moved a particle by `moved` along an axis (over the shortest rest length, as
+/// the residual) and left `before` at the iteration before: within a 64th of
+/// [`TOLERANCE`](super::TOLERANCE), or within it and either keeping pace with the motion
+/// (leaving at most half of `moved`) or stalled (leaving more than half of `before`).
+fn enough<S: Scalar>(measured: Solved<S>, moved: S, before: Option<S>) -> bool {
+    let (n, d) = super::TOLERANCE;
+    let r = measured.residual;
+    let still = r <= S::ratio(n, d * 64);
+    let paced = r + r <= moved;
+    let stalled = before.is_some_and(|b| r + r > b);
+    still || (measured.converged && (paced || stalled))
+}
+
+/// The farthest a free particle (`w` its inverse mass, 0 for a held one) moved along an axis
+/// over a solve of `h` so far: its velocity's largest coordinate times `h` (`x − x₀ = v h`).
+fn largest_move<P: Point, Sh: Shape>(
+    state: &State<P, Sh>,
+    w: &[P::Scalar],
+    h: P::Scalar,
+) -> P::Scalar {
+    let mut fastest = P::Scalar::ZERO;
+    for (v, &w) in Sh::flat(&state.vel).iter().zip(w) {
+        if w > P::Scalar::ZERO {
+            for axis in 0..P::DIM {
+                fastest = fastest.max(v.coord(axis).abs());
+            }
+        }
+    }
+    fastest * h
 }
 
 /// Where a solve keeps what it is asked for beyond the state: its forces' accelerations
