@@ -50,8 +50,9 @@
 //! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
 //! closing by more than the thickness between runs), on a natural spline or with a collider
 //! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
-//! meets the floor once a frame: the floor adds 1.67 times its bare step, where it added
-//! 12.8 times when the contacts ran at every substep (`docs/summary.md`, targets). After
+//! meets the floor once a frame: the floor adds 1.88 times its bare step (1.67 times in the
+//! run before, of the same code), where it added 12.8 times when the contacts ran at every
+//! substep (`docs/summary.md`, targets). After
 //! waited substeps, friction that holds a point still takes back all it slid since the
 //! contacts last ran (its particles' moves, weighted as in the point), so that a rope on a
 //! slope stays put as it did, but no more than its static limit could have stopped over
@@ -76,9 +77,9 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider (a collider keeps its box), is 1.2% of an 8-particle rope's bare
-//! step in the last run (`docs/summary.md`, targets; 6.1% and 2.4% in two runs before of
-//! the same code: the machine's noise is of that size).
+//! box test per collider (a collider keeps its box), is 6.0% of an 8-particle rope's bare
+//! step in the last run (`docs/summary.md`, targets; 1.2%, 2.4% and 6.1% in three runs
+//! before of the same code: the machine's noise is of that size; 4.7% by instructions).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the
 //! rope or cloth gave each collider and, for a collider with a mass
@@ -267,12 +268,13 @@ impl<'a, P: Point> Contacts<'a, P> {
     /// contacts wait), and 145 of the 600 frames end more than 2% short (a copy of the test
     /// kept outside the repository), never through each other. Settled in those five piles,
     /// where about 40 pairs of spans are near each other, the floor and self-contact together
-    /// cost 37 times the rope's bare step (63 µs a frame on the development machine), on
-    /// average 44 times while it falls into the pile and 102 times while it is whipped
-    /// round by its held end, 5 times lying straight on the floor, and 9 times for a
-    /// 24-particle rope lying still in a flat spiral: a heap of rope is costly, keep its
+    /// cost 42 times the rope's bare step (46 µs a frame on the development machine), on
+    /// average 52 times while it falls into the pile and 125 times while it is whipped
+    /// round by its held end, 6 times lying straight on the floor, and 9 times for a
+    /// 24-particle rope lying still in a flat spiral (37, 44, 102, 5 and 9 times in the run
+    /// before: the machine's runs move by a fifth): a heap of rope is costly, keep its
     /// particles few. Section (l) gives these for every integrator (settled in the pile 3
-    /// to 23 times its bare step, still in the spiral 1.8 to 8.6 times: the dearer the
+    /// to 27 times its bare step, still in the spiral 1.7 to 9.1 times: the dearer the
     /// integrator's own step, the less).
     /// A cloth's cells are boxed by their Bézier control points and searched from 3×3
     /// samples a side: a 10×10 towel folded over a rod, one half pushed into the other, never
