@@ -32,6 +32,7 @@
 
 mod banded;
 mod chain;
+mod conjugate;
 mod direct;
 mod euler;
 mod implicit;
