@@ -315,8 +315,13 @@ impl<P: Point> Collider<P> {
     /// A ball's centre (its surface's nearest point to any point lies towards it); `None`
     /// for other solids.
     pub(crate) fn centre(&self) -> Option<P> {
+        self.as_ball().map(|(centre, _)| centre)
+    }
+
+    /// A ball's centre and radius; `None` for other solids.
+    pub(crate) fn as_ball(&self) -> Option<(P, P::Scalar)> {
         match &self.solid {
-            Solid::Ball { center, .. } => Some(*center),
+            Solid::Ball { center, radius } => Some((*center, *radius)),
             _ => None,
         }
     }

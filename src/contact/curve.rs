@@ -229,10 +229,11 @@ impl<P: Point> Contacts<'_, P> {
                         let moved = dx * (most / w * spill);
                         slack += moved.max_coords(-moved);
                     }
-                    for j in 0..count {
-                        if let Some(span) = (first + j).checked_rem(n) {
-                            outdated[span] = true;
-                        }
+                    // Round a loop without a division a span.
+                    let mut span = first.checked_rem(n).unwrap_or(0);
+                    for _ in 0..count.min(n) {
+                        outdated[span] = true;
+                        span = if span + 1 == n { 0 } else { span + 1 };
                     }
                 }
             }

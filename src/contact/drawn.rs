@@ -229,7 +229,7 @@ impl<S: Scalar, const K: usize> Weights<S, K> {
 /// (`ρ` the farther of `b[1]` and `b[2]` from it), so a ball that is further than `ρ` and
 /// the thickness from the chord (by a 1/1024 of `ρ` and of the chord's longest coordinate,
 /// and 4 units in the last place of the coordinates, for the rounding) is clear of the
-/// span. One division and two roots; `false` for every solid but a ball, and in `Q16`
+/// span. One division and one root; `false` for every solid but a ball, and in `Q16`
 /// (whose products of a short chord keep few bits, and of a long one saturate; its roots
 /// and division are dear on a Cortex-M0), which then take the search.
 pub(super) fn ball_clears_span<P: Point>(
@@ -237,7 +237,7 @@ pub(super) fn ball_clears_span<P: Point>(
     b: [P; 4],
     thickness: P::Scalar,
 ) -> bool {
-    let Some(centre) = collider.centre().filter(|_| !P::Scalar::FIXED_POINT) else {
+    let Some((centre, radius)) = collider.as_ball().filter(|_| !P::Scalar::FIXED_POINT) else {
         return false;
     };
     let (zero, one) = (P::Scalar::ZERO, P::Scalar::ONE);
@@ -255,7 +255,8 @@ pub(super) fn ball_clears_span<P: Point>(
     let rounding = (largest(b[0]) + largest(centre) + one) * P::Scalar::EPSILON;
     let margin =
         (bulge + largest(chord)) * P::Scalar::ratio(1, 1024) + rounding * P::Scalar::from_i16(4);
-    collider.gap(nearest(centre)) - bulge >= thickness + margin
+    // Its gap, `|centre − nearest| − radius`, at least `bulge` more than the thickness.
+    !(centre - nearest(centre)).shorter_than(radius + thickness + margin + bulge)
 }
 
 /// `Σ w_i · p_i` over `(i, w_i)` in `w`.

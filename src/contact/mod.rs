@@ -35,23 +35,31 @@
 //!   `(w_i / m_i) · d / Σ_j w_j² / m_j`: the smallest mass-weighted change that moves the
 //!   drawn point by exactly `d` (with equal masses, `w_i · d / Σ w_j²`). Friction and
 //!   restitution go the same way. This catches pegs and poles far thinner than the particle
-//!   spacing; a collider the drawn rope touches costs about 3 to 4 times what it costs at
-//!   the particles (`docs/summary.md` (g): 1 948 against 561 ns a frame for an 8-particle
-//!   rope drawn as a B-spline on a peg 0.1× its spacing). In floats a ball near a cubic
+//!   spacing; a frame whose drawn rope touches a collider takes about 1.7 times one whose
+//!   particles do (`docs/summary.md` (g): 550 against 322 ns for an 8-particle rope drawn
+//!   as a B-spline on a peg 0.1× its spacing, at a thickness of 0). In floats a ball near a cubic
 //!   span is first judged against the capsule round the span's chord that holds its
 //!   control points: a ball clear of it by the thickness takes no search.
 //!
 //! **When.** A step's substeps come from its springs' stiffness; its contacts need only run
 //! so often that no point moves further than the thickness between two runs against a
 //! collider it can reach (its centre line then never goes into the collider), judged as the
-//! substeps are (below), and at the step's end. They run sooner when a particle gets faster
-//! than that judgement allowed for, and at every substep with a thickness of 0, with
+//! substeps are (below), and at the step's end. With a thickness of 0 that allowance is an
+//! eighth of the least depth `d` of a collider within reach (a ball's or capsule's radius, a
+//! box's least half side; **No tunnelling** below) or a sixty-fourth of the shortest spring's rest
+//! length, the less: a point may then go that far into a collider between runs (never so
+//! far that a run pushes it out of the far side), and is out of it at the step's end. Four
+//! pegs under an 8-particle rope drawn as a B-spline at a thickness of 0 meet it once a frame
+//! where they met it at every one of its 4 substeps, and add 2.17 times its bare step where
+//! they added 8.72 times (2.30 and 2.52 times in two runs before, of nearly the same code),
+//! and 0.36 times at its particles where they added 0.75 times (`docs/summary.md`, targets). They run sooner when a particle gets
+//! faster than that judgement allowed for, and at every substep with
 //! self-contact (on a rope's drawn curve, only while its last pass of self-contact pushed
 //! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
 //! closing by more than the thickness between runs), on a natural spline or with a collider
 //! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
-//! meets the floor once a frame: the floor adds 1.88 times its bare step (1.67 times in the
-//! run before, of the same code), where it added 12.8 times when the contacts ran at every
+//! meets the floor once a frame: the floor adds 1.90 times its bare step (1.88 and 1.67 times
+//! in the runs before, of the same code), where it added 12.8 times when the contacts ran at every
 //! substep (`docs/summary.md`, targets). After
 //! waited substeps, friction that holds a point still takes back all it slid since the
 //! contacts last ran (its particles' moves, weighted as in the point), so that a rope on a
@@ -77,8 +85,8 @@
 //! polyline, a Bézier and a B-spline (each inside its particles' convex hull), grown for a
 //! Catmull-Rom or natural spline by the largest step between neighbouring particles along
 //! an axis. What the test costs, a pass over the particles (their box and top speed) and a
-//! box test per collider (a collider keeps its box), is 6.0% of an 8-particle rope's bare
-//! step in the last run (`docs/summary.md`, targets; 1.2%, 2.4% and 6.1% in three runs
+//! box test per collider (a collider keeps its box), is 6.1% of an 8-particle rope's bare
+//! step in the last run (`docs/summary.md`, targets; 6.0%, 1.2%, 2.4% and 6.1% in four runs
 //! before of the same code: the machine's noise is of that size; 4.7% by instructions).
 //!
 //! **Two-way coupling.** [`Contacts::with_pushes`] reports, after each step, the impulse the

@@ -49,40 +49,69 @@ impl<P: Point> Contacts<'_, P> {
     /// up to `speed` (0 when the thickness is 0); `surface` when the drawn points are a
     /// surface's. `object` holds what is drawn at the frame's start: a collider that is not
     /// [`reachable`](Self::reachable) within the `dt` seconds asks for no substeps. Also the
-    /// fastest a point can close on a collider it can reach (its speed and the collider's;
-    /// 0 when the thickness is 0), with self-contact at least twice its points' speed (two
-    /// parts of the rope meeting head on): contacts that wait no longer than that closing
-    /// takes to cover the thickness let no point close on a collider or on another part by
-    /// more than the thickness between two runs.
+    /// fastest a point can close on a collider it can reach (its speed and the collider's),
+    /// with self-contact at least twice its points' speed (two parts of the rope meeting
+    /// head on), and with a thickness of 0 the least [`depth`](Collider::depth) of the
+    /// colliders it can reach: contacts that wait no longer than that closing takes to cover the
+    /// [`allowance`](Self::allowance) let no point close on a collider or on another part
+    /// by more than that.
     pub(crate) fn rate(
         &self,
         (speed, surface): (P::Scalar, bool),
         (object, dt): (Aabb<P>, P::Scalar),
-    ) -> (P::Scalar, P::Scalar) {
+    ) -> (P::Scalar, P::Scalar, P::Scalar) {
         let zero = P::Scalar::ZERO;
-        if self.thickness <= zero {
-            return (zero, zero);
-        }
         let reach = self.point_speed(speed, surface);
-        let (colliders, closing) = self.colliders.iter().fold((zero, zero), |most, c| {
-            if !self.reachable(c, (object, reach), dt) {
-                return most;
-            }
-            let closing = reach + c.velocity().length();
-            let allowed = self.thickness + c.depth();
-            (most.0.max(closing / allowed), most.1.max(closing))
-        });
+        let (colliders, closing, deepest) =
+            self.colliders
+                .iter()
+                .fold((zero, zero, P::Scalar::SAFE_RANGE), |most, c| {
+                    if !self.reachable(c, (object, reach), dt) {
+                        return most;
+                    }
+                    let (closing, depth) = (reach + c.velocity().length(), c.depth());
+                    match self.thickness > zero {
+                        true => {
+                            let rate = closing / (self.thickness + depth);
+                            (most.0.max(rate), most.1.max(closing), most.2)
+                        }
+                        false => (most.0, most.1.max(closing), most.2.min(depth)),
+                    }
+                });
         // Two parts of a rope can meet head on.
-        if self.self_friction.is_some() {
+        if self.self_friction.is_some() && self.thickness > zero {
             let apart = reach + reach;
-            (colliders.max(apart / self.thickness), closing.max(apart))
+            (
+                colliders.max(apart / self.thickness),
+                closing.max(apart),
+                deepest,
+            )
         } else {
-            (colliders, closing)
+            (colliders, closing, deepest)
         }
     }
 
+    /// How far a point may close on a collider between two runs of waiting contacts
+    /// ([`due`](Self::due)), when the least [`depth`](Collider::depth) of the colliders it
+    /// can reach is `depth` and `shortest` gives the shortest rest length of a spring with a
+    /// free end: the thickness (its centre line then never enters a collider); with a
+    /// thickness of 0, an eighth of that depth (never so far into a collider that a run
+    /// pushes it out of the far side) or a sixty-fourth of that length, the less (0 without
+    /// a spring), to be pushed out by the next run, at the latest the step's end.
+    pub(super) fn allowance(
+        &self,
+        depth: P::Scalar,
+        shortest: impl FnOnce() -> Option<P::Scalar>,
+    ) -> P::Scalar {
+        if self.thickness > P::Scalar::ZERO {
+            return self.thickness;
+        }
+        let spacing = shortest().unwrap_or(P::Scalar::ZERO);
+        (depth * P::Scalar::ratio(1, 8)).min(spacing * P::Scalar::ratio(1, 64))
+    }
+
     /// Whether the contacts may skip substeps ([`due`](Self::due)). They run at every
-    /// substep with a thickness of 0, with self-contact unless `remembering` (a step that
+    /// substep with self-contact unless `remembering` (a step that
     /// keeps a [`PairMemory`](super::memory::PairMemory), which runs them at every substep
     /// only while it holds two parts apart: a pile's stacked contacts, with a frame's weight
     /// on them, take more rounds than they have), on a natural spline (each
@@ -94,8 +123,7 @@ impl<P: Point> Contacts<'_, P> {
             self.touch,
             Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline)
         );
-        self.thickness > P::Scalar::ZERO
-            && !natural
+        !natural
             && (self.self_friction.is_none() || remembering)
             && !self
                 .colliders
@@ -136,13 +164,20 @@ impl<P: Point> Contacts<'_, P> {
     /// The [`search_key`](Collider::search_key) scale for `hull`, or `None` when every point
     /// of `hull` is at least the thickness from `collider` moved by `shift`: the distance
     /// changes no faster than the point moves, so every point of the box is at least
-    /// d(centre) - half its diagonal away (and at most d(centre) + half of it).
+    /// d(centre) - half its diagonal away (and at most d(centre) + half of it). A ball in
+    /// floats (scale 1) by the box's nearest point to its centre instead: exact, no root.
     pub(super) fn near(
         &self,
         collider: &Collider<P>,
         hull: Aabb<P>,
         shift: P,
     ) -> Option<P::Scalar> {
+        if let Some((c, radius)) = collider.as_ball().filter(|_| !P::Scalar::FIXED_POINT) {
+            let c = c - shift;
+            let off = c.min_coords(hull.max).max_coords(hull.min) - c;
+            let reach = radius + self.thickness;
+            return off.shorter_than(reach).then_some(P::Scalar::ONE);
+        }
         let centre = hull.min.midpoint(hull.max);
         let half_diagonal = (hull.max - centre).length();
         let gap = collider.gap(centre + shift);

@@ -103,11 +103,12 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         if self.sleeps_under(forces, near) {
             return Reach::Asleep;
         }
-        let (rate, closing) = contacts.rate(speed, object);
+        let (rate, closing, depth) = contacts.rate(speed, object);
         let plan = Plan {
             rate,
             closing: (contacts.may_wait(false).then_some(closing), closing),
             speed: top_speed,
+            allowance: contacts.allowance(depth, || self.shortest_rest()),
         };
         Reach::Within(plan, near)
     }
@@ -165,7 +166,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
                         waited.time += h;
                         waited.count = waited.count.saturating_add(1);
                         let v = Sh::flat(&state.vel);
-                        if !holding && !contacts.due((h, lag), &waited, (closing, plan.speed), v) {
+                        if !holding
+                            && !contacts.due(
+                                (h, lag),
+                                &waited,
+                                (closing, plan.speed, plan.allowance),
+                                v,
+                            )
+                        {
                             return;
                         }
                     }
@@ -246,6 +254,9 @@ pub(crate) struct Plan<S> {
     /// The particles' top speed the rate holds for (m/s), gravity's gain over the frame
     /// included.
     speed: S,
+    /// How far a point may close on a collider between two runs of waiting contacts (m;
+    /// [`Contacts::rate`]).
+    allowance: S,
 }
 
 impl<S: Copy> Plan<S> {

@@ -155,20 +155,21 @@ impl<P: Point> Contacts<'_, P> {
     /// Whether contacts that [`may_wait`](Self::may_wait) are due at the end of a substep
     /// of `h` ending `lag` seconds before the step's end (`waited`: the substeps since they
     /// last ran, this one counted), for particles now moving at `v`, in a frame where a
-    /// point closes on a collider at `closing` at most for particle speeds up to `speed`
-    /// ([`rate`](Self::rate)): at the step's end; when a point could close by more than the
-    /// thickness by the end of another substep since they last ran; when a particle moves
-    /// as fast as `speed` or faster (the bound holds no longer). Costs a pass over the
-    /// velocities (their squares, no root) when nothing else makes them due.
+    /// point closes on a collider at `closing` at most for particle speeds up to `speed`,
+    /// by `allowance` at most between runs ([`rate`](Self::rate)): at the step's end; when
+    /// a point could close by more than the allowance by the end of another substep since
+    /// they last ran; when a particle moves as fast as `speed` or faster (the bound holds no
+    /// longer). Costs a pass over the velocities (their squares, no root) when nothing else
+    /// makes them due.
     pub(super) fn due(
         &self,
         (h, lag): (P::Scalar, P::Scalar),
         waited: &Waited<P::Scalar>,
-        (closing, speed): (P::Scalar, P::Scalar),
+        (closing, speed, allowance): (P::Scalar, P::Scalar, P::Scalar),
         v: &[P],
     ) -> bool {
         lag <= P::Scalar::ZERO
-            || (waited.time + h) * closing > self.thickness
+            || (waited.time + h) * closing > allowance
             || v.iter().any(|v| !v.shorter_than(speed))
     }
 }

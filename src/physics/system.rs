@@ -501,7 +501,14 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     /// particle and a square root per spring; may saturate in `Q16`, and overflow to ±∞ in
     /// floats past the format's range.
     pub fn energy(&self) -> P::Scalar {
-        let model: Model<'_, P, Sh, T> = Model {
+        let held = self.settings.integrator.holds_links();
+        self.model()
+            .energy(self.positions(), self.velocities(), held)
+    }
+
+    /// The system as the integrators see it, outside a step.
+    fn model(&self) -> Model<'_, P, Sh, T> {
+        Model {
             inv_mass: &self.inv_mass,
             topology: &self.topology,
             gravity: self.settings.gravity,
@@ -509,9 +516,13 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             time: self.time,
             settled: false,
             touching: false,
-        };
-        let held = self.settings.integrator.holds_links();
-        model.energy(self.positions(), self.velocities(), held)
+        }
+    }
+
+    /// The shortest rest length of a spring with a free end, `None` without one
+    /// ([`Model::shortest_rest`]). A pass over the springs' runs.
+    pub(crate) fn shortest_rest(&self) -> Option<P::Scalar> {
+        self.model().shortest_rest()
     }
 
     /// The highest angular frequency `ω` (rad/s) of the springs, by Gershgorin's bound, and

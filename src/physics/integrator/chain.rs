@@ -60,7 +60,7 @@ use core::cell::Cell;
 /// they fall back; a hold stops once an iteration takes less than a sixteenth off the
 /// links' squared stretch, and falls back then): in the player's scene on a Cortex-M0,
 /// 248 824 instructions a frame on average and 2.0 million at worst (`docs/devices.md`),
-/// 4.1 times the frame without the box in f32 on the host (`docs/summary.md`, targets).
+/// 4.0 times the frame without the box in f32 on the host (`docs/summary.md`, targets).
 /// With springs instead of links (`inextensible: false`), the contacts take rounds after
 /// each solve as [`DirectSprings`](super::DirectSprings)' do (until a round moves no
 /// particle by more than 0.1% of the shortest spring, `converged` false where they do not

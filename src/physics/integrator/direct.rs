@@ -46,7 +46,7 @@ use core::cell::Cell;
 /// with one round, a `DirectSprings` rope pulled round a box by a load went up to 14 times its
 /// thickness into the box; with the rounds it stays out (`tests/suite/promises.rs`,
 /// `a_load_round_a_box_keeps_a_springy_rope_out_of_it`; a 20 kg load's rope in f32, 600
-/// frames: never in the box, 7.9 times the frame without the box, `docs/summary.md`,
+/// frames: never in the box, 8.1 times the frame without the box, `docs/summary.md`,
 /// targets). A frame that touches pays a round more at least, each a pass of the contacts;
 /// a rope pressed onto many pegs pays up to 8 (16 pegs 0.1 times its spacing under an
 /// 8-particle rope: 16.8 times its bare frame, 3.0 times in the last run before the
