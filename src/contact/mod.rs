@@ -45,16 +45,17 @@
 //! so often that no point moves further than the thickness between two runs against a
 //! collider it can reach (its centre line then never goes into the collider), judged as the
 //! substeps are (below), and at the step's end. With a thickness of 0 that allowance is an
-//! eighth of the least depth `d` of a collider within reach (a ball's or capsule's radius, a
-//! box's least half side; **No tunnelling** below) or a sixty-fourth of the shortest spring's rest
-//! length, the less: a point may then go that far into a collider between runs (never so
-//! far that a run pushes it out of the far side), and is out of it at the step's end. Four
-//! pegs under an 8-particle rope drawn as a B-spline at a thickness of 0 meet it once a frame
-//! where they met it at every one of its 4 substeps, and add 2.17 times its bare step where
-//! they added 8.72 times (2.30 and 2.52 times in two runs before, of nearly the same code),
-//! and 0.36 times at its particles where they added 0.75 times (`docs/summary.md`, targets). They run sooner when a particle gets
-//! faster than that judgement allowed for, and at every substep with
-//! self-contact (on a rope's drawn curve, only while its last pass of self-contact pushed
+//! eighth of the least depth `d` of a collider within reach (a ball's or capsule's radius,
+//! a box's least half side; **No tunnelling** below) or a sixty-fourth of the shortest
+//! spring's rest length, the less: a point may then go that far into a collider between
+//! runs (never so far that a run pushes it out of the far side), and is out of it at the
+//! step's end. Four pegs under an 8-particle rope drawn as a B-spline at a thickness of 0
+//! meet it once a frame where they met it at every one of its 4 substeps, and add 2.17
+//! times its bare step where they added 8.72 times (2.30 and 2.52 times in two runs before,
+//! of nearly the same code), and 0.36 times at its particles where they added 0.75 times
+//! (`docs/summary.md`, targets). They run sooner when a particle gets faster than that
+//! judgement allowed for, and at every substep with self-contact (on a rope's drawn curve
+//! with a thickness above 0, only while its last pass of self-contact pushed
 //! two spans apart; else as often as keeps two parts of the rope, meeting head on, from
 //! closing by more than the thickness between runs), on a natural spline or with a collider
 //! that has a mass. A 16-particle rope lying on a floor, its springs asking for 7 substeps,
@@ -189,7 +190,10 @@ pub struct Push<P> {
 }
 
 impl<'a, P: Point> Contacts<'a, P> {
-    /// Contacts of a rope or cloth of radius `thickness` with `colliders`.
+    /// Contacts of a rope or cloth of radius `thickness` with `colliders`. At a thickness of
+    /// 0 the drawn centre line itself touches: between the runs of a frame's contacts a point
+    /// may go up to an eighth of a collider's depth into it, or a sixty-fourth of the
+    /// shortest spring, and it is out of it at the step's end (module docs, **When**).
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for a negative or non-finite thickness, or one beyond

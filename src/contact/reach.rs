@@ -111,7 +111,8 @@ impl<P: Point> Contacts<'_, P> {
     }
 
     /// Whether the contacts may skip substeps ([`due`](Self::due)). They run at every
-    /// substep with self-contact unless `remembering` (a step that
+    /// substep with self-contact at a thickness of 0, with self-contact unless
+    /// `remembering` (a step that
     /// keeps a [`PairMemory`](super::memory::PairMemory), which runs them at every substep
     /// only while it holds two parts apart: a pile's stacked contacts, with a frame's weight
     /// on them, take more rounds than they have), on a natural spline (each
@@ -123,8 +124,10 @@ impl<P: Point> Contacts<'_, P> {
             self.touch,
             Touch::Drawn(Smoothing::NaturalSpline) | Touch::DrawnLoop(Smoothing::NaturalSpline)
         );
+        let apart =
+            self.self_friction.is_none() || (remembering && self.thickness > P::Scalar::ZERO);
         !natural
-            && (self.self_friction.is_none() || remembering)
+            && apart
             && !self
                 .colliders
                 .iter()
