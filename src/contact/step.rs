@@ -54,6 +54,30 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
         })
     }
 
+    /// The particles' box, and the fastest a free particle can go this frame: its speed now
+    /// plus what gravity adds over `dt`. One pass over the particles and two roots.
+    fn bounds_and_top_speed(&self, dt: P::Scalar) -> (Aabb<P>, P::Scalar) {
+        let (x, v) = (self.positions(), self.velocities());
+        let first = Aabb::point(x.first().copied().unwrap_or_default());
+        // In `Q16`, whose squares saturate past 181 units a second, the length of the
+        // longest velocity by exact 64-bit sums; in floats the root of the largest square.
+        let (bounds, (longest, most)) = x.iter().zip(v).fold(
+            (first, (P::default(), P::Scalar::ZERO)),
+            |(b, (longest, most)), (x, v)| {
+                let fastest = match P::Scalar::FIXED_POINT {
+                    true => (if v.longer_than(longest) { *v } else { longest }, most),
+                    false => (longest, most.max(v.dot(*v))),
+                };
+                (b.including(*x), fastest)
+            },
+        );
+        let fastest = match P::Scalar::FIXED_POINT {
+            true => longest.length(),
+            false => most.sqrt(),
+        };
+        (bounds, fastest + self.settings().gravity.length() * dt)
+    }
+
     /// A box that holds what `contacts` test, from the particles' box `b`, which holds their
     /// polyline and their Bézier and B-spline curves and surfaces (each inside its control
     /// points' convex hull), grown for a Catmull-Rom or natural spline
@@ -108,7 +132,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             rate,
             closing: (contacts.may_wait(false).then_some(closing), closing),
             speed: top_speed,
-            allowance: contacts.allowance(depth, || self.shortest_rest()),
+            allowance: contacts.allowance(depth, || self.model().shortest_rest()),
         };
         Reach::Within(plan, near)
     }

@@ -12,7 +12,7 @@ use crate::physics::shape::Shape;
 use crate::physics::sleep::Rest;
 use crate::physics::spring::{Spread, Topology, check_rest};
 use crate::physics::substeps::{plan, spring_bound, substeps_per_rate};
-use crate::{Aabb, Error, Point, Scalar, Settings};
+use crate::{Error, Point, Scalar, Settings};
 
 pub use crate::physics::substeps::MAX_SUBSTEPS;
 
@@ -507,7 +507,7 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
     }
 
     /// The system as the integrators see it, outside a step.
-    fn model(&self) -> Model<'_, P, Sh, T> {
+    pub(crate) fn model(&self) -> Model<'_, P, Sh, T> {
         Model {
             inv_mass: &self.inv_mass,
             topology: &self.topology,
@@ -517,12 +517,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             settled: false,
             touching: false,
         }
-    }
-
-    /// The shortest rest length of a spring with a free end, `None` without one
-    /// ([`Model::shortest_rest`]). A pass over the springs' runs.
-    pub(crate) fn shortest_rest(&self) -> Option<P::Scalar> {
-        self.model().shortest_rest()
     }
 
     /// The highest angular frequency `ω` (rad/s) of the springs, by Gershgorin's bound, and
@@ -607,30 +601,6 @@ impl<P: Point, Sh: Shape, T: Topology<P::Scalar>, I: Integrator> MassSpring<P, S
             return Ok(self.doze(dt));
         }
         self.step_resolving(dt, forces, (None, Some(0)), |_, _, _, _| {})
-    }
-
-    /// The particles' box, and the fastest a free particle can go this frame: its speed now
-    /// plus what gravity adds over `dt`. One pass over the particles and two roots.
-    pub(crate) fn bounds_and_top_speed(&self, dt: P::Scalar) -> (Aabb<P>, P::Scalar) {
-        let (x, v) = (self.positions(), self.velocities());
-        let first = Aabb::point(x.first().copied().unwrap_or_default());
-        // In `Q16`, whose squares saturate past 181 units a second, the length of the
-        // longest velocity by exact 64-bit sums; in floats the root of the largest square.
-        let (bounds, (longest, most)) = x.iter().zip(v).fold(
-            (first, (P::default(), P::Scalar::ZERO)),
-            |(b, (longest, most)), (x, v)| {
-                let fastest = match P::Scalar::FIXED_POINT {
-                    true => (if v.longer_than(longest) { *v } else { longest }, most),
-                    false => (longest, most.max(v.dot(*v))),
-                };
-                (b.including(*x), fastest)
-            },
-        );
-        let fastest = match P::Scalar::FIXED_POINT {
-            true => longest.length(),
-            false => most.sqrt(),
-        };
-        (bounds, fastest + self.settings.gravity.length() * dt)
     }
 
     /// A step whose substeps each end with `resolve(state, inverse masses, (substep length,
