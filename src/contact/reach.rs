@@ -167,19 +167,29 @@ impl<P: Point> Contacts<'_, P> {
     /// The [`search_key`](Collider::search_key) scale for `hull`, or `None` when every point
     /// of `hull` is at least the thickness from `collider` moved by `shift`: the distance
     /// changes no faster than the point moves, so every point of the box is at least
-    /// d(centre) - half its diagonal away (and at most d(centre) + half of it). A ball in
-    /// floats (scale 1) by the box's nearest point to its centre instead: exact, no root.
+    /// d(centre) - half its diagonal away (and at most d(centre) + half of it). A ball by
+    /// the box's nearest point to its centre instead (exact, no root), its scale from the
+    /// farthest corner's coordinate offsets summed (at least its distance).
     pub(super) fn near(
         &self,
         collider: &Collider<P>,
         hull: Aabb<P>,
         shift: P,
     ) -> Option<P::Scalar> {
-        if let Some((c, radius)) = collider.as_ball().filter(|_| !P::Scalar::FIXED_POINT) {
+        if let Some((c, radius)) = collider.as_ball() {
             let c = c - shift;
             let off = c.min_coords(hull.max).max_coords(hull.min) - c;
-            let reach = radius + self.thickness;
-            return off.shorter_than(reach).then_some(P::Scalar::ONE);
+            if !off.shorter_than(radius + self.thickness) {
+                return None;
+            }
+            if !P::Scalar::FIXED_POINT {
+                return Some(P::Scalar::ONE);
+            }
+            let (low, high) = (hull.min - c, hull.max - c);
+            let far = (0..P::DIM).fold(P::Scalar::ZERO, |sum, d| {
+                sum + low.coord(d).abs().max(high.coord(d).abs())
+            });
+            return Some(collider.key_scale(far - radius));
         }
         let centre = hull.min.midpoint(hull.max);
         let half_diagonal = (hull.max - centre).length();

@@ -279,7 +279,13 @@ impl<P: Point, const K: usize> Smoothed<P, K> {
         let spans = self.span_count();
         let closed = spans == K;
         let (method, n, f) = (self.method, self.len, Fractions::new());
-        let index = |j: usize| (first + j).checked_rem(spans).unwrap_or(0);
+        // Round a loop without a division a span.
+        let start = first.checked_rem(spans).unwrap_or(0);
+        let index = |j: usize| match start + j {
+            i if i >= spans => i - spans,
+            i => i,
+        };
+        let count = count.min(spans);
         match &mut self.pieces {
             Pieces::Cubic(s, _) => (0..count).map(index).for_each(|i| {
                 s[i] = match (closed, method) {
